@@ -1,0 +1,53 @@
+#include "cli_common.hpp"
+
+#include <iostream>
+#include <sstream>
+
+#include "scenes/atomic_file.hpp"
+
+namespace lodopt::cli {
+
+void addOutputOptions(CLI::App& command, OutputOptions& options) {
+    command.add_flag("--json", options.json, "Print machine-readable JSON on stdout");
+    command.add_flag("--quiet,-q", options.quiet, "No progress output");
+}
+
+void printJson(const nlohmann::json& document) {
+    std::cout << document.dump(2) << std::endl;
+}
+
+void writeJsonFile(const std::string& path, const nlohmann::json& document) {
+    scenes::writeTextAtomically(path, document.dump(2) + "\n");
+}
+
+std::vector<int> parseIntList(const std::string& text, const std::string& what) {
+    std::vector<int> values;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        try {
+            std::size_t used = 0;
+            int value = std::stoi(item, &used);
+            if (used != item.size()) throw std::invalid_argument(item);
+            values.push_back(value);
+        } catch (const std::exception&) {
+            throw UsageError(what + ": '" + item + "' is not an integer (expected a list like 0,2,1)");
+        }
+    }
+    if (values.empty()) throw UsageError(what + ": empty list");
+    return values;
+}
+
+void parseSize(const std::string& text, int& width, int& height) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    std::istringstream stream(text);
+    if (!(stream >> w >> x >> h) || (x != 'x' && x != 'X') || (stream >> extra) || w <= 0 || h <= 0 ||
+        w > 16384 || h > 16384) {
+        throw UsageError("--size: '" + text + "' is not WIDTHxHEIGHT with 1..16384 pixels each");
+    }
+    width = w;
+    height = h;
+}
+
+}  // namespace lodopt::cli

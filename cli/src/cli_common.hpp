@@ -1,0 +1,44 @@
+// Shared plumbing of the lodopt commands: exit codes, error classes, JSON and table output.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+namespace lodopt::cli {
+
+// Documented in the README: 0 ok, 1 runtime failure, 2 bad input or usage.
+enum ExitCode : int { kExitOk = 0, kExitRuntime = 1, kExitBadInput = 2 };
+
+// Bad command-line values or input files that the user must fix: exit code 2.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// Options every result-printing command has.
+struct OutputOptions {
+    bool json = false;   // print one JSON document on stdout instead of text
+    bool quiet = false;  // no progress lines
+};
+void addOutputOptions(CLI::App& command, OutputOptions& options);
+
+// Prints `document` (pretty, 2 spaces) and a newline on stdout.
+void printJson(const nlohmann::json& document);
+
+// Writes `document` atomically to `path`.
+void writeJsonFile(const std::string& path, const nlohmann::json& document);
+
+// Parses "0,2,1" into integers; throws UsageError naming `what`.
+std::vector<int> parseIntList(const std::string& text, const std::string& what);
+// Parses "512x512".
+void parseSize(const std::string& text, int& width, int& height);
+
+// Each command adds itself as a subcommand; its callback throws on failure and main maps
+// the exception to an exit code (UsageError, scenes::SceneError → 2; anything else → 1).
+void addSceneCommand(CLI::App& app);
+void addRenderCommand(CLI::App& app);
+
+}  // namespace lodopt::cli

@@ -1,0 +1,30 @@
+// lodopt: finds the best combination of discrete LODs for a scene under a render-time budget.
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "scenes/scene.hpp"
+
+int main(int argc, char** argv) {
+    using namespace lodopt::cli;
+    CLI::App app{"lodopt: perceptual LOD combination optimizer", "lodopt"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "lodopt 0.1.0");
+    addSceneCommand(app);
+    addRenderCommand(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& error) {
+        int code = app.exit(error);
+        return code == 0 ? kExitOk : kExitBadInput;
+    } catch (const UsageError& error) {
+        std::cerr << "lodopt: error: " << error.what() << "\n";
+        return kExitBadInput;
+    } catch (const lodopt::scenes::SceneError& error) {
+        std::cerr << "lodopt: error: " << error.what() << "\n";
+        return kExitBadInput;
+    } catch (const std::exception& error) {
+        std::cerr << "lodopt: runtime error: " << error.what() << "\n";
+        return kExitRuntime;
+    }
+    return kExitOk;
+}

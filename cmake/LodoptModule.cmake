@@ -1,0 +1,35 @@
+# lodopt_module(NAME [PUBLIC deps...] [PRIVATE deps...])
+# One library per source folder: include/<name>/ is public, src/ is private. Sources are
+# globbed so that adding a file needs no CMake edit. A module with no sources yet is an
+# interface library, so later modules can already name it.
+function(lodopt_module name)
+  cmake_parse_arguments(ARG "" "" "PUBLIC;PRIVATE" ${ARGN})
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
+  if(sources)
+    add_library(lodopt_${name} STATIC ${sources})
+    target_include_directories(lodopt_${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+                                              PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+    target_link_libraries(lodopt_${name} PUBLIC ${ARG_PUBLIC} PRIVATE ${ARG_PRIVATE})
+    set_target_properties(lodopt_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  else()
+    add_library(lodopt_${name} INTERFACE)
+    target_include_directories(lodopt_${name} INTERFACE ${CMAKE_CURRENT_SOURCE_DIR}/include)
+    target_link_libraries(lodopt_${name} INTERFACE ${ARG_PUBLIC})
+  endif()
+  add_library(lodopt::${name} ALIAS lodopt_${name})
+endfunction()
+
+# lodopt_test(MODULE deps...): tests/<module>/*.cpp become one GoogleTest executable.
+function(lodopt_test module)
+  file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/${module}/*.cpp)
+  if(NOT sources)
+    return()
+  endif()
+  add_executable(${module}_tests ${sources})
+  target_link_libraries(${module}_tests PRIVATE ${ARGN} GTest::gtest_main GTest::gmock)
+  target_compile_definitions(${module}_tests PRIVATE
+    LODOPT_SHARED_DATA_DIR="${LODOPT_SHARED_DATA_DIR}"
+    LODOPT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    LODOPT_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  gtest_discover_tests(${module}_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+endfunction()

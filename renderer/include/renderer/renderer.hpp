@@ -1,0 +1,127 @@
+// Headless, deterministic rendering of LOD combinations.
+//
+// The Renderer is the front: it owns GPU copies of every level of every object of one scene
+// and draws any Combination from any Camera into an offscreen framebuffer (RGBA8 color +
+// float depth). The backend is a Platform (OSMesa's llvmpipe by default: OpenGL 4.5 core in
+// software, no GPU, no display). Shading is Lambert + ambient with the base color factor
+// times the base-color texture; depth test on, no blending, no MSAA, so the same inputs give
+// bit-identical pixels.
+//
+// Layers: renderLayer(i, k) draws object i at level k alone; composite() rebuilds a frame
+// from one layer per object by nearest depth. Because the rasterizer is deterministic, a
+// composite equals the full render except where two objects' surfaces have exactly equal
+// depth (the full render keeps the first drawn, the composite the lower object index).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scenes/scene.hpp"
+
+namespace lodopt::renderer {
+
+// Rendering failures (no context, out of memory, a GL error): a runtime error, exit code 1.
+class RenderError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct RenderSettings {
+    int width = 512;   // pixels, 1..16384
+    int height = 512;  // pixels, 1..16384
+    glm::vec3 lightDirection{-0.4f, -1.0f, -0.3f};  // world space, towards the scene
+    float ambient = 0.3f;                           // 0..1 share of unlit color
+    // Sky; exact multiples of 1/255 so the cleared bytes are (158, 194, 230, 255) everywhere.
+    glm::vec4 clearColor{158.0f / 255.0f, 194.0f / 255.0f, 230.0f / 255.0f, 1.0f};
+};
+
+// A rendered image: RGBA8 rows top to bottom, and window-space depth in [0, 1] per pixel
+// (1 = nothing drawn), same layout.
+struct Frame {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;
+    std::vector<float> depth;
+};
+
+// Pixel rectangle [x0, x1) x [y0, y1), top-left origin. Empty when x0 >= x1 or y0 >= y1.
+struct PixelRect {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bool empty() const { return x0 >= x1 || y0 >= y1; }
+    int width() const { return empty() ? 0 : x1 - x0; }
+    int height() const { return empty() ? 0 : y1 - y0; }
+};
+
+// One object at one level rendered alone, cropped to the pixels it covers.
+struct Layer {
+    int object = -1;
+    int level = -1;
+    PixelRect rect;                  // covered pixels' bounding rectangle in the frame
+    std::vector<std::uint8_t> rgba;  // rect.width() * rect.height() * 4
+    std::vector<float> depth;        // rect.width() * rect.height(), 1 = not covered
+    std::uint64_t coveredPixels = 0;
+};
+
+// Backend behind the Renderer (Filament-style): creates and makes current a GL context.
+class Platform {
+public:
+    virtual ~Platform() = default;
+    virtual void makeCurrent() = 0;
+    virtual std::string description() const = 0;  // e.g. "OSMesa 22.3.6 llvmpipe"
+};
+// OSMesa with an OpenGL 3.3+ core-profile context. Throws RenderError when it cannot.
+std::unique_ptr<Platform> createOsMesaPlatform();
+
+class Renderer {
+public:
+    // Uploads every level of every object. `scene` must outlive the renderer.
+    Renderer(const scenes::Scene& scene, RenderSettings settings = {});
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    const RenderSettings& settings() const;
+    // GL_VENDOR / GL_RENDERER / GL_VERSION of the context.
+    std::string glRendererString() const;
+    std::string glVersionString() const;
+
+    // Draws `combination` (validated) from `camera` into `out` (resized as needed).
+    void render(const scenes::Combination& combination, const scenes::Camera& camera, Frame& out);
+    Frame render(const scenes::Combination& combination, const scenes::Camera& camera);
+    // Draws without reading pixels back, then glFinish: for timing only.
+    void drawAndFinish(const scenes::Combination& combination, const scenes::Camera& camera);
+    // Median wall time in ms of drawAndFinish over `repeats` after `warmup` unmeasured runs
+    // (steady clock around the draw + glFinish). GL timer queries miss llvmpipe's
+    // rasterization, so they are not used.
+    double timeRender(const scenes::Combination& combination, const scenes::Camera& camera, int repeats = 5,
+                      int warmup = 1);
+
+    Layer renderLayer(int object, int level, const scenes::Camera& camera);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+// Composites one layer per drawn object (nullptr = not drawn) into `out` by nearest depth,
+// ties to the lower object index; background is `clearColor`. `out` is resized as needed.
+void composite(const std::vector<const Layer*>& layers, int width, int height, glm::vec4 clearColor, Frame& out);
+// Recomposites only `rect` of `out` (which already holds a composite of the same size).
+void compositeRect(const std::vector<const Layer*>& layers, PixelRect rect, glm::vec4 clearColor, Frame& out);
+
+// The clear color as the renderer writes it (RGBA8).
+void clearColorBytes(glm::vec4 clearColor, std::uint8_t out[4]);
+
+// Image files through OpenImageIO; format by extension (PNG default). Written atomically.
+void writeColorImage(const std::string& path, const Frame& frame);
+void writeDepthImage(const std::string& path, const Frame& frame);  // EXR, one float channel
+// Reads an 8-bit image; `channels` is 1 (gray), 3 or 4 as stored. Throws RenderError.
+struct LoadedImage {
+    int width = 0, height = 0, channels = 0;
+    std::vector<std::uint8_t> pixels;
+};
+LoadedImage readImage(const std::string& path);
+
+}  // namespace lodopt::renderer

@@ -1,0 +1,397 @@
+// The OpenGL front of the renderer: uploads a scene once, draws combinations into an FBO.
+#include "renderer/renderer.hpp"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace lodopt::renderer {
+namespace {
+
+const char* kVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec2 aUv;
+uniform mat4 uModelViewProjection;
+uniform mat3 uNormalMatrix;
+out vec3 vNormal;
+out vec2 vUv;
+void main() {
+    gl_Position = uModelViewProjection * vec4(aPosition, 1.0);
+    vNormal = uNormalMatrix * aNormal;
+    vUv = aUv;
+}
+)";
+
+// Lambert + ambient, lit from both sides: leaf cards and open meshes have no back side.
+const char* kFragmentShader = R"(#version 330 core
+in vec3 vNormal;
+in vec2 vUv;
+uniform vec4 uBaseColor;
+uniform sampler2D uBaseColorTexture;
+uniform bool uHasTexture;
+uniform vec3 uToLight;
+uniform float uAmbient;
+out vec4 fragColor;
+void main() {
+    float len = length(vNormal);
+    vec3 n = len > 1e-20 ? vNormal / len : vec3(0.0, 1.0, 0.0);
+    if (!gl_FrontFacing) n = -n;
+    float diffuse = max(dot(n, uToLight), 0.0);
+    vec4 color = uBaseColor;
+    if (uHasTexture) color *= texture(uBaseColorTexture, vUv);
+    fragColor = vec4(clamp(color.rgb * (uAmbient + (1.0 - uAmbient) * diffuse), 0.0, 1.0), 1.0);
+}
+)";
+
+void checkGl(const char* where) {
+    GLenum error = glGetError();
+    if (error == GL_NO_ERROR) return;
+    const char* name = error == GL_OUT_OF_MEMORY ? "GL_OUT_OF_MEMORY"
+                       : error == GL_INVALID_OPERATION ? "GL_INVALID_OPERATION"
+                       : error == GL_INVALID_VALUE ? "GL_INVALID_VALUE"
+                       : error == GL_INVALID_ENUM ? "GL_INVALID_ENUM"
+                       : error == GL_INVALID_FRAMEBUFFER_OPERATION ? "GL_INVALID_FRAMEBUFFER_OPERATION"
+                                                                     : "unknown GL error";
+    throw RenderError(std::string("OpenGL error ") + name + " in " + where);
+}
+
+GLuint compileShader(GLenum type, const char* source) {
+    GLuint shader = glCreateShader(type);
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = {};
+        glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
+        glDeleteShader(shader);
+        throw RenderError(std::string("shader compilation failed: ") + log);
+    }
+    return shader;
+}
+
+struct GpuMesh {
+    GLuint vertexArray = 0, vertexBuffer = 0, indexBuffer = 0;
+    GLsizei indexCount = 0;
+    int material = -1;
+};
+
+}  // namespace
+
+struct Renderer::Impl {
+    const scenes::Scene& scene;
+    RenderSettings settings;
+    std::unique_ptr<Platform> platform;
+    GLuint program = 0, framebuffer = 0, colorBuffer = 0, depthBuffer = 0;
+    GLint uModelViewProjection = -1, uNormalMatrix = -1, uBaseColor = -1, uHasTexture = -1, uToLight = -1,
+          uAmbient = -1, uTexture = -1;
+    std::vector<GLuint> textures;
+    std::vector<std::vector<std::vector<GpuMesh>>> meshes;  // [object][level][mesh]
+    std::vector<std::uint8_t> readbackColor;
+    std::string vendor, rendererName, version;
+
+    Impl(const scenes::Scene& s, RenderSettings st) : scene(s), settings(st) {}
+
+    void createProgram() {
+        GLuint vertex = compileShader(GL_VERTEX_SHADER, kVertexShader);
+        GLuint fragment = compileShader(GL_FRAGMENT_SHADER, kFragmentShader);
+        program = glCreateProgram();
+        glAttachShader(program, vertex);
+        glAttachShader(program, fragment);
+        glLinkProgram(program);
+        glDeleteShader(vertex);
+        glDeleteShader(fragment);
+        GLint ok = 0;
+        glGetProgramiv(program, GL_LINK_STATUS, &ok);
+        if (!ok) throw RenderError("shader program link failed");
+        uModelViewProjection = glGetUniformLocation(program, "uModelViewProjection");
+        uNormalMatrix = glGetUniformLocation(program, "uNormalMatrix");
+        uBaseColor = glGetUniformLocation(program, "uBaseColor");
+        uHasTexture = glGetUniformLocation(program, "uHasTexture");
+        uToLight = glGetUniformLocation(program, "uToLight");
+        uAmbient = glGetUniformLocation(program, "uAmbient");
+        uTexture = glGetUniformLocation(program, "uBaseColorTexture");
+    }
+
+    void createFramebuffer() {
+        glGenFramebuffers(1, &framebuffer);
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glGenRenderbuffers(1, &colorBuffer);
+        glBindRenderbuffer(GL_RENDERBUFFER, colorBuffer);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, settings.width, settings.height);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colorBuffer);
+        glGenRenderbuffers(1, &depthBuffer);
+        glBindRenderbuffer(GL_RENDERBUFFER, depthBuffer);
+        glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, settings.width, settings.height);
+        glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer);
+        checkGl("framebuffer allocation");
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            throw RenderError("OpenGL framebuffer of " + std::to_string(settings.width) + "x" +
+                              std::to_string(settings.height) + " is incomplete");
+        }
+    }
+
+    void uploadTextures() {
+        for (const scenes::Texture& texture : scene.textures) {
+            GLuint id = 0;
+            glGenTextures(1, &id);
+            glBindTexture(GL_TEXTURE_2D, id);
+            glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture.width, texture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                         texture.rgba.data());
+            glGenerateMipmap(GL_TEXTURE_2D);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+            textures.push_back(id);
+            checkGl(("texture upload '" + texture.name + "'").c_str());
+        }
+    }
+
+    void uploadMeshes() {
+        std::vector<float> interleaved;
+        meshes.resize(scene.objects.size());
+        for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+            const scenes::Object& object = scene.objects[o];
+            meshes[o].resize(object.levels.size());
+            for (std::size_t l = 0; l < object.levels.size(); ++l) {
+                for (const scenes::Mesh& mesh : object.levels[l].meshes) {
+                    if (mesh.indices.empty()) continue;
+                    GpuMesh gpu;
+                    gpu.material = mesh.material;
+                    gpu.indexCount = static_cast<GLsizei>(mesh.indices.size());
+                    interleaved.clear();
+                    interleaved.reserve(mesh.positions.size() * 8);
+                    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+                        const glm::vec3& p = mesh.positions[v];
+                        const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f, 1.0f, 0.0f);
+                        const glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0.0f);
+                        interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y});
+                    }
+                    glGenVertexArrays(1, &gpu.vertexArray);
+                    glBindVertexArray(gpu.vertexArray);
+                    glGenBuffers(1, &gpu.vertexBuffer);
+                    glBindBuffer(GL_ARRAY_BUFFER, gpu.vertexBuffer);
+                    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data(),
+                                 GL_STATIC_DRAW);
+                    glGenBuffers(1, &gpu.indexBuffer);
+                    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.indexBuffer);
+                    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                                 mesh.indices.data(), GL_STATIC_DRAW);
+                    const GLsizei stride = 8 * sizeof(float);
+                    glEnableVertexAttribArray(0);
+                    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(0));
+                    glEnableVertexAttribArray(1);
+                    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(3 * sizeof(float)));
+                    glEnableVertexAttribArray(2);
+                    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(6 * sizeof(float)));
+                    glBindVertexArray(0);
+                    checkGl(("mesh upload of object '" + object.name + "'").c_str());
+                    meshes[o][l].push_back(gpu);
+                }
+            }
+        }
+    }
+
+    // Draws the given (object, level) pairs; level kNotDrawn skips the object.
+    void draw(const scenes::Combination& combination, const scenes::Camera& camera) {
+        platform->makeCurrent();
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glViewport(0, 0, settings.width, settings.height);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_CULL_FACE);
+        glDisable(GL_BLEND);
+        glDisable(GL_DITHER);
+        const glm::vec4& clear = settings.clearColor;
+        glClearColor(clear.r, clear.g, clear.b, clear.a);
+        glClearDepth(1.0);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glUseProgram(program);
+        const glm::mat4 viewProjection =
+            scenes::projectionMatrix(camera, float(settings.width) / float(settings.height)) *
+            scenes::viewMatrix(camera);
+        const glm::vec3 toLight = -glm::normalize(settings.lightDirection);
+        glUniform3fv(uToLight, 1, glm::value_ptr(toLight));
+        glUniform1f(uAmbient, settings.ambient);
+        glUniform1i(uTexture, 0);
+        glActiveTexture(GL_TEXTURE0);
+        for (std::size_t o = 0; o < combination.size(); ++o) {
+            const int level = combination[o];
+            if (level == scenes::kNotDrawn) continue;
+            const glm::mat4& model = scene.objects[o].transform;
+            const glm::mat4 mvp = viewProjection * model;
+            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+            glUniformMatrix4fv(uModelViewProjection, 1, GL_FALSE, glm::value_ptr(mvp));
+            glUniformMatrix3fv(uNormalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+            for (const GpuMesh& mesh : meshes[o][level]) {
+                glm::vec4 color(1.0f);
+                int texture = -1;
+                if (mesh.material >= 0) {
+                    color = scene.materials[mesh.material].baseColorFactor;
+                    texture = scene.materials[mesh.material].baseColorTexture;
+                }
+                glUniform4fv(uBaseColor, 1, glm::value_ptr(color));
+                glUniform1i(uHasTexture, texture >= 0 ? 1 : 0);
+                glBindTexture(GL_TEXTURE_2D, texture >= 0 ? textures[texture] : 0);
+                glBindVertexArray(mesh.vertexArray);
+                glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
+            }
+        }
+        glBindVertexArray(0);
+        checkGl("draw");
+    }
+
+    // Reads color and depth back, rows flipped to top-to-bottom.
+    void readBack(Frame& out) {
+        const int w = settings.width, h = settings.height;
+        out.width = w;
+        out.height = h;
+        out.rgba.resize(std::size_t(w) * h * 4);
+        out.depth.resize(std::size_t(w) * h);
+        readbackColor.resize(out.rgba.size());
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readbackColor.data());
+        std::vector<float>& depth = out.depth;
+        glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+        checkGl("glReadPixels");
+        const std::size_t colorRow = std::size_t(w) * 4;
+        for (int y = 0; y < h; ++y) {
+            std::memcpy(&out.rgba[std::size_t(y) * colorRow], &readbackColor[std::size_t(h - 1 - y) * colorRow],
+                        colorRow);
+        }
+        for (int y = 0; y < h / 2; ++y) {
+            std::swap_ranges(depth.begin() + std::ptrdiff_t(y) * w, depth.begin() + std::ptrdiff_t(y + 1) * w,
+                             depth.begin() + std::ptrdiff_t(h - 1 - y) * w);
+        }
+    }
+};
+
+Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings) : mImpl(std::make_unique<Impl>(scene, settings)) {
+    if (settings.width < 1 || settings.height < 1 || settings.width > 16384 || settings.height > 16384) {
+        throw RenderError("render size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                          " is outside 1..16384");
+    }
+    scenes::validateScene(scene);
+    mImpl->platform = createOsMesaPlatform();
+    auto glString = [](GLenum name) {
+        const GLubyte* text = glGetString(name);
+        return text ? std::string(reinterpret_cast<const char*>(text)) : std::string("unknown");
+    };
+    mImpl->vendor = glString(GL_VENDOR);
+    mImpl->rendererName = glString(GL_RENDERER);
+    mImpl->version = glString(GL_VERSION);
+    mImpl->createProgram();
+    mImpl->createFramebuffer();
+    mImpl->uploadTextures();
+    mImpl->uploadMeshes();
+}
+
+Renderer::~Renderer() {
+    if (!mImpl || !mImpl->platform) return;
+    mImpl->platform->makeCurrent();
+    for (auto& object : mImpl->meshes) {
+        for (auto& level : object) {
+            for (GpuMesh& mesh : level) {
+                glDeleteBuffers(1, &mesh.vertexBuffer);
+                glDeleteBuffers(1, &mesh.indexBuffer);
+                glDeleteVertexArrays(1, &mesh.vertexArray);
+            }
+        }
+    }
+    if (!mImpl->textures.empty()) glDeleteTextures(GLsizei(mImpl->textures.size()), mImpl->textures.data());
+    glDeleteRenderbuffers(1, &mImpl->colorBuffer);
+    glDeleteRenderbuffers(1, &mImpl->depthBuffer);
+    glDeleteFramebuffers(1, &mImpl->framebuffer);
+    glDeleteProgram(mImpl->program);
+}
+
+const RenderSettings& Renderer::settings() const { return mImpl->settings; }
+
+std::string Renderer::glRendererString() const { return mImpl->vendor + " / " + mImpl->rendererName; }
+std::string Renderer::glVersionString() const { return mImpl->version; }
+
+void Renderer::render(const scenes::Combination& combination, const scenes::Camera& camera, Frame& out) {
+    scenes::validateCombination(mImpl->scene, combination);
+    mImpl->draw(combination, camera);
+    mImpl->readBack(out);
+}
+
+Frame Renderer::render(const scenes::Combination& combination, const scenes::Camera& camera) {
+    Frame frame;
+    render(combination, camera, frame);
+    return frame;
+}
+
+void Renderer::drawAndFinish(const scenes::Combination& combination, const scenes::Camera& camera) {
+    scenes::validateCombination(mImpl->scene, combination);
+    mImpl->draw(combination, camera);
+    glFinish();
+}
+
+double Renderer::timeRender(const scenes::Combination& combination, const scenes::Camera& camera, int repeats,
+                            int warmup) {
+    scenes::validateCombination(mImpl->scene, combination);
+    repeats = std::max(repeats, 1);
+    for (int i = 0; i < warmup; ++i) drawAndFinish(combination, camera);
+    std::vector<double> samples;
+    samples.reserve(repeats);
+    for (int i = 0; i < repeats; ++i) {
+        auto start = std::chrono::steady_clock::now();
+        mImpl->draw(combination, camera);
+        glFinish();
+        auto stop = std::chrono::steady_clock::now();
+        samples.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
+    }
+    std::sort(samples.begin(), samples.end());
+    const std::size_t mid = samples.size() / 2;
+    return samples.size() % 2 ? samples[mid] : 0.5 * (samples[mid - 1] + samples[mid]);
+}
+
+Layer Renderer::renderLayer(int object, int level, const scenes::Camera& camera) {
+    const scenes::Scene& scene = mImpl->scene;
+    if (object < 0 || object >= static_cast<int>(scene.objects.size()) || level < 0 ||
+        level >= static_cast<int>(scene.objects[object].levels.size())) {
+        throw RenderError("renderLayer: no level " + std::to_string(level) + " of object " + std::to_string(object));
+    }
+    scenes::Combination alone(scene.objects.size(), scenes::kNotDrawn);
+    alone[object] = level;
+    Frame frame;
+    mImpl->draw(alone, camera);
+    mImpl->readBack(frame);
+    Layer layer;
+    layer.object = object;
+    layer.level = level;
+    PixelRect rect{frame.width, frame.height, 0, 0};
+    for (int y = 0; y < frame.height; ++y) {
+        for (int x = 0; x < frame.width; ++x) {
+            if (frame.depth[std::size_t(y) * frame.width + x] < 1.0f) {
+                rect.x0 = std::min(rect.x0, x);
+                rect.y0 = std::min(rect.y0, y);
+                rect.x1 = std::max(rect.x1, x + 1);
+                rect.y1 = std::max(rect.y1, y + 1);
+                ++layer.coveredPixels;
+            }
+        }
+    }
+    if (layer.coveredPixels == 0) rect = PixelRect{};
+    layer.rect = rect;
+    const int w = rect.width(), h = rect.height();
+    layer.rgba.resize(std::size_t(w) * h * 4);
+    layer.depth.resize(std::size_t(w) * h);
+    for (int y = 0; y < h; ++y) {
+        const std::size_t source = std::size_t(rect.y0 + y) * frame.width + rect.x0;
+        std::memcpy(&layer.rgba[std::size_t(y) * w * 4], &frame.rgba[source * 4], std::size_t(w) * 4);
+        std::memcpy(&layer.depth[std::size_t(y) * w], &frame.depth[source], std::size_t(w) * sizeof(float));
+    }
+    return layer;
+}
+
+}  // namespace lodopt::renderer

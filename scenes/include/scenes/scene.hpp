@@ -1,0 +1,143 @@
+// lodopt scene model: objects with discrete levels of detail, materials, textures, viewpoints.
+//
+// A Scene is a flat list of Objects. Each Object has a world transform and 1..N Levels
+// ordered finest (index 0) to coarsest. A Level is one or more Meshes, each drawn with one
+// Material; materials and textures are shared scene-wide by index. Statistics per level
+// (vertices, triangles, texture bytes, draw calls, bounds) are precomputed by
+// updateStatistics() so that the time model and the optimizer never walk geometry.
+//
+// A Combination picks one level per object (kNotDrawn leaves the object out). Cameras are
+// the scene's viewpoints.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace lodopt::scenes {
+
+// Bad scene data from outside (a file, a command line): the message names the file and the
+// element (e.g. "model.gltf: meshes[3].primitives[0].indices: index 812 >= vertex count 800").
+class SceneError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// RGBA8, rows top to bottom, tightly packed (width * 4 bytes per row).
+struct Texture {
+    std::string name;
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgba;
+};
+
+struct Material {
+    std::string name;
+    glm::vec4 baseColorFactor{1.0f};  // linear multiplier of the texture (or the color alone)
+    int baseColorTexture = -1;        // index into Scene::textures, -1 for none
+};
+
+// One draw call: triangles with one material. Normals always present (generated if the
+// source had none); uvs empty or one per position.
+struct Mesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;
+    std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
+    int material = -1;                   // index into Scene::materials, -1 for the default
+};
+
+struct Bounds {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
+    glm::vec3 sphereCenter{0.0f};
+    float sphereRadius = 0.0f;
+    bool empty() const { return max.x < min.x; }
+};
+
+struct LevelStats {
+    std::uint64_t vertices = 0;
+    std::uint64_t triangles = 0;
+    std::uint64_t textureBytes = 0;  // distinct textures referenced, width*height*4 each
+    std::uint32_t drawCalls = 0;     // meshes (one material each)
+    Bounds bounds;                   // object space
+};
+
+struct Level {
+    std::vector<Mesh> meshes;
+    LevelStats stats;
+    // Screen-coverage threshold (fraction of viewport height) above which this level is
+    // used, from MSFT_screencoverage; empty when the source did not say.
+    std::optional<float> screenCoverage;
+    // meshoptimizer's relative simplification error of this level against level 0
+    // (0 for authored levels and level 0).
+    float simplificationError = 0.0f;
+};
+
+struct Object {
+    std::string name;
+    glm::mat4 transform{1.0f};  // object space → world space
+    std::vector<Level> levels;  // finest (0) to coarsest; never empty in a valid scene
+};
+
+struct Camera {
+    std::string name;
+    glm::vec3 position{0.0f, 0.0f, 5.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovYDegrees = 45.0f;  // vertical field of view
+    float nearPlane = 0.1f;
+    float farPlane = 1000.0f;
+};
+
+// A sequence of camera poses (one per frame) for walk-throughs and the scheduler.
+struct CameraPath {
+    std::string name;
+    float framesPerSecond = 30.0f;
+    std::vector<Camera> frames;
+};
+
+struct Scene {
+    std::string name;
+    std::vector<Object> objects;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<Camera> views;
+    std::vector<CameraPath> paths;
+};
+
+// One level per object, in object order; kNotDrawn leaves an object out of the frame.
+using Combination = std::vector<int>;
+inline constexpr int kNotDrawn = -1;
+
+// Every object at level 0: the reference combination.
+Combination referenceCombination(const Scene& scene);
+// Every object at its coarsest level.
+Combination coarsestCombination(const Scene& scene);
+// Throws SceneError unless `combination` has one valid level (or kNotDrawn) per object.
+void validateCombination(const Scene& scene, const Combination& combination);
+
+// Recomputes every level's LevelStats from its meshes.
+void updateStatistics(Scene& scene);
+LevelStats computeLevelStats(const Scene& scene, const Level& level);
+// Object-space bounds of some meshes (empty Bounds when there are no vertices).
+Bounds computeBounds(const std::vector<Mesh>& meshes);
+// World-space bounds of an object's level.
+Bounds worldBounds(const Object& object, int level);
+
+// Fills `mesh.normals` with area-weighted vertex normals.
+void computeNormals(Mesh& mesh);
+
+// Checks the invariants above (indices in range, normals/uvs sized, material and texture
+// indices valid, at least one level per object); throws SceneError naming the element.
+void validateScene(const Scene& scene);
+
+// Camera matrices (right-handed, OpenGL clip space). `aspect` = width / height.
+glm::mat4 viewMatrix(const Camera& camera);
+glm::mat4 projectionMatrix(const Camera& camera, float aspect);
+
+}  // namespace lodopt::scenes
