@@ -40,5 +40,10 @@ void parseSize(const std::string& text, int& width, int& height);
 // the exception to an exit code (UsageError, scenes::SceneError → 2; anything else → 1).
 void addSceneCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
+void addMetricsCommand(CLI::App& app);
+void addCalibrateCommand(CLI::App& app);
+void addEstimateCommand(CLI::App& app);
+void addOptimizeCommand(CLI::App& app);
+void addCompareCommand(CLI::App& app);
 
 }  // namespace lodopt::cli

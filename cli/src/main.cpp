@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "cli_common.hpp"
+#include "optimizer/problem.hpp"
 #include "scenes/scene.hpp"
 
 int main(int argc, char** argv) {
@@ -11,12 +12,21 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "lodopt 0.1.0");
     addSceneCommand(app);
     addRenderCommand(app);
+    addMetricsCommand(app);
+    addCalibrateCommand(app);
+    addEstimateCommand(app);
+    addOptimizeCommand(app);
+    addCompareCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
         int code = app.exit(error);
         return code == 0 ? kExitOk : kExitBadInput;
     } catch (const UsageError& error) {
+        std::cerr << "lodopt: error: " << error.what() << "\n";
+        return kExitBadInput;
+    } catch (const lodopt::optimizer::ProblemError& error) {
+        // Includes BudgetError: a budget below the cheapest combination, with the minimum.
         std::cerr << "lodopt: error: " << error.what() << "\n";
         return kExitBadInput;
     } catch (const lodopt::scenes::SceneError& error) {

@@ -1,7 +1,9 @@
 #include "scenes/builtin.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <utility>
 
 #include "scenes/gltf_io.hpp"
@@ -14,6 +16,8 @@ using SceneFactory = Scene (*)(std::uint32_t);
 const std::vector<std::pair<std::string, SceneFactory>>& registry() {
     static const std::vector<std::pair<std::string, SceneFactory>> scenes = {
         {"harbor", &makeHarborScene},
+        {"forest", &makeForestScene},
+        {"city", &makeCityScene},
     };
     return scenes;
 }
@@ -48,9 +52,47 @@ Scene makeBuiltinScene(const std::string& name, std::uint32_t seed) {
     throw SceneError("unknown scene '" + name + "': expected a built-in scene (" + known + ") or a .gltf/.glb file");
 }
 
+void addDefaultViews(Scene& scene) {
+    if (!scene.views.empty()) return;
+    Bounds all;
+    all.min = glm::vec3(std::numeric_limits<float>::max());
+    all.max = glm::vec3(-std::numeric_limits<float>::max());
+    for (const Object& object : scene.objects) {
+        Bounds b = worldBounds(object, 0);
+        if (b.empty()) continue;
+        all.min = glm::min(all.min, b.min);
+        all.max = glm::max(all.max, b.max);
+    }
+    if (all.empty()) {
+        all.min = glm::vec3(-1.0f);
+        all.max = glm::vec3(1.0f);
+    }
+    const glm::vec3 center = 0.5f * (all.min + all.max);
+    const float radius = std::max(0.5f * glm::length(all.max - all.min), 1e-3f);
+    // Far enough that the bounding sphere fits a 45° field of view, from three sides.
+    const float distance = radius / std::sin(glm::radians(22.5f)) * 1.05f;
+    const struct {
+        const char* name;
+        glm::vec3 direction;
+    } sides[] = {{"front", {0.0f, 0.35f, 1.0f}}, {"side", {1.0f, 0.35f, 0.0f}}, {"three_quarter", {-0.7f, 0.6f, 0.7f}}};
+    for (const auto& side : sides) {
+        Camera camera;
+        camera.name = side.name;
+        camera.target = center;
+        camera.position = center + glm::normalize(side.direction) * distance;
+        camera.nearPlane = std::max(distance - 2.0f * radius, distance * 1e-3f);
+        camera.farPlane = distance + 2.0f * radius;
+        scene.views.push_back(camera);
+    }
+}
+
 Scene loadScene(const std::string& nameOrPath, std::uint32_t seed) {
     if (isBuiltinScene(nameOrPath)) return makeBuiltinScene(nameOrPath, seed);
-    if (endsWith(nameOrPath, ".gltf") || endsWith(nameOrPath, ".glb")) return loadGltf(nameOrPath);
+    if (endsWith(nameOrPath, ".gltf") || endsWith(nameOrPath, ".glb")) {
+        Scene scene = loadGltf(nameOrPath);
+        addDefaultViews(scene);
+        return scene;
+    }
     return makeBuiltinScene(nameOrPath, seed);  // throws with the list of names
 }
 

@@ -56,7 +56,7 @@ Mesh makeHull(float length, float beam, float depth, int sections, int profilePo
     mesh.material = material;
     auto halfWidth = [&](float t) {  // t = 0 stern .. 1 bow
         float stern = 0.82f + 0.18f * std::sqrt(glm::clamp(t / 0.25f, 0.0f, 1.0f));
-        float bow = t > 0.65f ? std::pow(1.0f - (t - 0.65f) / 0.35f, 0.75f) : 1.0f;
+        float bow = t > 0.65f ? std::pow(std::max(1.0f - (t - 0.65f) / 0.35f, 0.0f), 0.75f) : 1.0f;
         return 0.5f * beam * stern * std::max(bow, 0.02f);
     };
     auto keelDepth = [&](float t) { return depth * (t > 0.85f ? 1.0f - 0.6f * (t - 0.85f) / 0.15f : 1.0f); };
@@ -68,7 +68,7 @@ Mesh makeHull(float length, float beam, float depth, int sections, int profilePo
         for (int p = 0; p <= profilePoints; ++p) {
             float a = glm::pi<float>() * float(p) / float(profilePoints);  // port deck → keel → starboard deck
             float z = halfWidth(t) * std::cos(a);
-            float y = deckY + sheer - (keelDepth(t) + deckY + sheer) * std::pow(std::sin(a), 0.6f);
+            float y = deckY + sheer - (keelDepth(t) + deckY + sheer) * std::pow(std::max(std::sin(a), 0.0f), 0.6f);
             mesh.positions.emplace_back(x, y, z);
             mesh.uvs.emplace_back(t, (y + depth) / (deckY + sheer + depth));
         }

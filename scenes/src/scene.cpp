@@ -155,6 +155,12 @@ void validateScene(const Scene& scene) {
                 if (mesh.material < -1 || mesh.material >= static_cast<int>(scene.materials.size())) {
                     throw SceneError(at + ": material " + std::to_string(mesh.material) + " does not exist");
                 }
+                for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+                    const glm::vec3& p = mesh.positions[v];
+                    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+                        throw SceneError(at + ": position " + std::to_string(v) + " is not finite");
+                    }
+                }
                 for (std::uint32_t index : mesh.indices) {
                     if (index >= mesh.positions.size()) {
                         throw SceneError(at + ": index " + std::to_string(index) + " >= vertex count " +

@@ -24,7 +24,11 @@ Scene makeHarborScene(std::uint32_t seed = 1);
 Scene makeForestScene(std::uint32_t seed = 1);
 Scene makeCityScene(std::uint32_t seed = 1);
 
-// A built-in name or a .gltf/.glb path.
+// Adds views "front", "side" and "three_quarter" framing the scene's level-0 bounds when
+// the scene has no cameras (most glTF models have none).
+void addDefaultViews(Scene& scene);
+
+// A built-in name or a .gltf/.glb path (with default views added when it has no cameras).
 Scene loadScene(const std::string& nameOrPath, std::uint32_t seed = 1);
 
 // Finds a view by name or decimal index; throws SceneError listing the views otherwise.

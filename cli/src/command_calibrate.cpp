@@ -1,0 +1,275 @@
+// lodopt calibrate: render sampled combinations from sampled viewpoints, time them robustly,
+// fit every render-time model and write a device profile (method.md §4; timemodel/).
+//
+// Timing on a shared, noisy machine: every sample is timed in `rounds` interleaved passes
+// (a fresh shuffled order per pass, so a burst of load from elsewhere spreads over many
+// samples instead of ruining one), each pass `warmup` untimed draws then `repeats` timed
+// draws of draw + glFinish (renderer::Renderer::drawAndFinish), each on the steady clock and
+// on the process CPU clock (all of llvmpipe's threads). The fitted time is the statistic that
+// --clock names (timemodel::TimingSettings); all three are kept in the profile.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include <time.h>
+
+#include "cli_common.hpp"
+#include "progress.hpp"
+#include "renderer/renderer.hpp"
+#include "scenes/builtin.hpp"
+#include "timemodel/calibration.hpp"
+#include "timemodel/features.hpp"
+#include "timemodel/profile.hpp"
+
+namespace lodopt::cli {
+namespace {
+
+struct CalibrateOptions {
+    std::string scene = scenes::kDefaultSceneName;
+    std::string views;  // comma-separated names or indices; empty = all
+    int samples = 240;
+    std::uint64_t seed = 1;
+    std::uint32_t sceneSeed = 1;
+    std::string size = "512x512";
+    int jitter = 3;
+    int rounds = 3;
+    int repeats = 3;
+    int warmup = 1;
+    std::string clock = timemodel::kDefaultTimingClock;
+    std::string out = "device.json";
+    OutputOptions output;
+};
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double processCpuMs() {
+    timespec now{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
+}
+
+// One sample's timings, one entry per pass.
+struct SampleTimings {
+    std::vector<double> passMin, passMedian, passCpu;
+};
+
+void timePass(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
+              int repeats, int warmup, SampleTimings& out) {
+    for (int i = 0; i < warmup; ++i) renderer.drawAndFinish(combination, camera);
+    std::vector<double> wall, cpu;
+    for (int i = 0; i < repeats; ++i) {
+        const double cpuStart = processCpuMs();
+        const auto wallStart = std::chrono::steady_clock::now();
+        renderer.drawAndFinish(combination, camera);
+        const auto wallStop = std::chrono::steady_clock::now();
+        cpu.push_back(processCpuMs() - cpuStart);
+        wall.push_back(std::chrono::duration<double, std::milli>(wallStop - wallStart).count());
+    }
+    out.passMin.push_back(*std::min_element(wall.begin(), wall.end()));
+    out.passMedian.push_back(median(wall));
+    out.passCpu.push_back(median(cpu));
+}
+
+std::vector<int> parseViews(const scenes::Scene& scene, const std::string& text) {
+    std::vector<int> views;
+    if (text.empty()) return views;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        if (item.empty()) throw UsageError("--views: empty view name in '" + text + "'");
+        views.push_back(scenes::findView(scene, item));
+    }
+    return views;
+}
+
+nlohmann::json errorsJson(const timemodel::ErrorStats& e) {
+    return {{"count", e.count}, {"mean", e.mean}, {"median", e.median}, {"p90", e.p90}, {"max", e.max}};
+}
+
+void runCalibrate(const CalibrateOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    renderer::RenderSettings settings;
+    parseSize(options.size, settings.width, settings.height);
+    const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
+
+    timemodel::CalibrationOptions planOptions;
+    planOptions.samples = options.samples;
+    planOptions.jitteredPerView = options.jitter;
+    planOptions.views = parseViews(scene, options.views);
+    planOptions.seed = options.seed;
+    timemodel::CalibrationPlan plan;
+    try {
+        plan = timemodel::planCalibration(scene, planOptions);
+    } catch (const timemodel::TimeModelError& error) {
+        throw UsageError(error.what());
+    }
+
+    std::vector<timemodel::FeatureTable> tables;
+    tables.reserve(plan.viewpoints.size());
+    for (const timemodel::Viewpoint& viewpoint : plan.viewpoints) {
+        tables.emplace_back(scene, viewpoint.camera, settings.width, settings.height);
+    }
+
+    renderer::Renderer renderer(scene, settings);
+    const std::size_t count = plan.samples.size();
+    std::vector<SampleTimings> timings(count);
+    Progress progress("calibrate", count * std::size_t(options.rounds), options.output.quiet || options.output.json);
+    timemodel::SplitMix64 shuffle(options.seed ^ 0xC0FFEEull);
+    std::vector<std::size_t> order(count);
+    for (std::size_t i = 0; i < count; ++i) order[i] = i;
+    for (int round = 0; round < options.rounds; ++round) {
+        for (std::size_t i = count; i > 1; --i) std::swap(order[i - 1], order[std::size_t(shuffle.below(int(i)))]);
+        for (std::size_t index : order) {
+            const timemodel::PlannedSample& planned = plan.samples[index];
+            timePass(renderer, planned.combination, plan.viewpoints[planned.viewpoint].camera, options.repeats,
+                     options.warmup, timings[index]);
+            progress.step("round " + std::to_string(round + 1));
+        }
+    }
+    progress.finish();
+
+    timemodel::DeviceProfile profile;
+    std::vector<timemodel::Sample> fitSamples, heldOutSamples;
+    std::vector<double> spreads;
+    for (std::size_t i = 0; i < count; ++i) {
+        const timemodel::PlannedSample& planned = plan.samples[i];
+        const SampleTimings& t = timings[i];
+        timemodel::ProfileSample recorded;
+        recorded.wallMinMs = *std::min_element(t.passMin.begin(), t.passMin.end());
+        recorded.wallMedianMs = median(t.passMedian);
+        recorded.cpuMs = median(t.passCpu);
+        const std::vector<double>& perPass =
+            options.clock == "cpu" ? t.passCpu : options.clock == "wall-median" ? t.passMedian : t.passMin;
+        timemodel::Sample& sample = recorded.sample;
+        sample.features = tables[planned.viewpoint].features(planned.combination);
+        sample.measuredMs = options.clock == "cpu"           ? recorded.cpuMs
+                            : options.clock == "wall-median" ? recorded.wallMedianMs
+                                                             : recorded.wallMinMs;
+        sample.viewpoint = planned.viewpoint;
+        const auto [low, high] = std::minmax_element(perPass.begin(), perPass.end());
+        if (sample.measuredMs > 0.0) spreads.push_back((*high - *low) / median(perPass));
+        recorded.heldOut = plan.viewpoints[planned.viewpoint].heldOut;
+        (recorded.heldOut ? heldOutSamples : fitSamples).push_back(sample);
+        profile.samples.push_back(recorded);
+    }
+    profile.models = timemodel::fitAllModels(fitSamples, heldOutSamples);
+    const bool anyFitted = std::any_of(profile.models.begin(), profile.models.end(),
+                                       [](const timemodel::ModelResult& r) { return r.fitted; });
+    if (!anyFitted) {
+        std::string reasons;
+        for (const auto& r : profile.models) reasons += "\n  " + r.name + ": " + r.failure;
+        throw std::runtime_error("no time model could be fitted:" + reasons);
+    }
+
+    profile.created = timemodel::currentDateUtc();
+    profile.machine = timemodel::describeMachine();
+    profile.glRenderer = renderer.glRendererString();
+    profile.glVersion = renderer.glVersionString();
+    profile.width = settings.width;
+    profile.height = settings.height;
+    profile.scene = scene.name;
+    profile.sceneSeed = options.sceneSeed;
+    profile.seed = options.seed;
+    profile.viewpoints = static_cast<int>(plan.viewpoints.size());
+    profile.heldOutViewpoints = static_cast<int>(std::count_if(
+        plan.viewpoints.begin(), plan.viewpoints.end(), [](const timemodel::Viewpoint& v) { return v.heldOut; }));
+    const timemodel::ErrorStats spread = timemodel::summarizeErrors(spreads);
+    profile.timing = {options.clock, options.rounds, options.repeats, options.warmup, spread.median, spread.p90, 0.0};
+    profile.timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    timemodel::saveProfile(options.out, profile);
+
+    if (options.output.json) {
+        nlohmann::json models = nlohmann::json::array();
+        for (const timemodel::ModelResult& r : profile.models) {
+            nlohmann::json entry = {{"name", r.name}, {"fitted", r.fitted}};
+            if (!r.fitted) entry["failure"] = r.failure;
+            nlohmann::json coefficients = nlohmann::json::object();
+            for (std::size_t c = 0; c < r.coefficients.size(); ++c) coefficients[r.coefficientNames[c]] = r.coefficients[c];
+            entry["coefficients"] = coefficients;
+            entry["held_out_errors"] = errorsJson(r.heldOutErrors);
+            entry["fit_errors"] = errorsJson(r.fitErrors);
+            entry["notes"] = r.fit.notes;
+            models.push_back(entry);
+        }
+        printJson({{"out", options.out},
+                   {"scene", scene.name},
+                   {"width", settings.width},
+                   {"height", settings.height},
+                   {"renderer", profile.glRenderer},
+                   {"cpu_model", profile.machine.cpuModel},
+                   {"cores", profile.machine.cores},
+                   {"samples", count},
+                   {"fit_samples", fitSamples.size()},
+                   {"held_out_samples", heldOutSamples.size()},
+                   {"viewpoints", profile.viewpoints},
+                   {"held_out_viewpoints", profile.heldOutViewpoints},
+                   {"clock", options.clock},
+                   {"timing_spread_median", spread.median},
+                   {"timing_spread_p90", spread.p90},
+                   {"seconds", profile.timing.seconds},
+                   {"default_model", profile.defaultModel},
+                   {"models", models}});
+        return;
+    }
+    std::cout << "calibrated '" << scene.name << "' at " << settings.width << "x" << settings.height << " on "
+              << profile.machine.cpuModel << " (" << profile.machine.cores << " threads), " << profile.glRenderer
+              << "\n";
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "%zu samples: %zu fitted on %d viewpoints, %zu held out on %d viewpoints\n"
+                  "timing: clock %s, %d passes x %d draws (+%d warm-up); spread between passes: median %.1f%%, "
+                  "p90 %.1f%%\n",
+                  count, fitSamples.size(), profile.viewpoints - profile.heldOutViewpoints, heldOutSamples.size(),
+                  profile.heldOutViewpoints, options.clock.c_str(), options.rounds, options.repeats, options.warmup,
+                  100.0 * spread.median, 100.0 * spread.p90);
+    std::cout << line << timemodel::formatErrorTable(profile.models);
+    for (const timemodel::ModelResult& r : profile.models) {
+        for (const std::string& note : r.fit.notes) std::cout << "  note (" << r.name << "): " << note << "\n";
+    }
+    std::snprintf(line, sizeof line, "wrote %s (%.1f s)\n", options.out.c_str(), profile.timing.seconds);
+    std::cout << line;
+}
+
+}  // namespace
+
+void addCalibrateCommand(CLI::App& app) {
+    auto options = std::make_shared<CalibrateOptions>();
+    CLI::App* command =
+        app.add_subcommand("calibrate", "Time sampled frames, fit every render-time model, write a device profile");
+    command->add_option("--scene", options->scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
+    command->add_option("--views", options->views, "Named views to calibrate from, comma-separated (default all)");
+    command->add_option("--samples", options->samples, "Frames to time in all (>= 4)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000000));
+    command->add_option("--seed", options->seed, "Seed of the sampled combinations and viewpoints")
+        ->capture_default_str();
+    command->add_option("--scene-seed", options->sceneSeed, "Seed of a built-in scene")->capture_default_str();
+    command->add_option("--size", options->size, "WIDTHxHEIGHT of the timed frames")->capture_default_str();
+    command->add_option("--jitter", options->jitter, "Extra viewpoints around each named view")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100));
+    command->add_option("--rounds", options->rounds, "Interleaved timing passes over all samples")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100));
+    command->add_option("--repeats", options->repeats, "Timed draws per sample per pass (median)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    command->add_option("--warmup", options->warmup, "Untimed draws before each timed batch")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 100));
+    command->add_option("--clock", options->clock,
+                        "Fitted time: wall-min (least wall time), wall-median, or cpu (process CPU time)")
+        ->capture_default_str()
+        ->check(CLI::IsMember(timemodel::timingClockNames()));
+    command->add_option("--out", options->out, "Device profile to write (JSON)")->capture_default_str();
+    addOutputOptions(*command, options->output);
+    command->callback([options] { runCalibrate(*options); });
+}
+
+}  // namespace lodopt::cli

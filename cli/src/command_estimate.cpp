@@ -1,0 +1,125 @@
+// lodopt estimate: the predicted render time of one combination from one view, from a device
+// profile (or the profile shipped for the built-in scenes), to check against `render --time`.
+#include <iostream>
+
+#include "cli_common.hpp"
+#include "renderer/renderer.hpp"
+#include "scenes/builtin.hpp"
+#include "timemodel/features.hpp"
+#include "timemodel/profile.hpp"
+
+namespace lodopt::cli {
+namespace {
+
+struct EstimateOptions {
+    std::string profile;  // empty = shipped
+    std::string scene = scenes::kDefaultSceneName;
+    std::string view = "0";
+    std::string levels;
+    std::string model;  // empty = the profile's default
+    std::string size;   // empty = the profile's
+    std::uint32_t seed = 1;
+    bool noRendererCheck = false;
+    OutputOptions output;
+};
+
+// The current OpenGL renderer string, from a context on an empty scene (no upload).
+std::string currentGlRenderer(std::vector<std::string>& warnings) {
+    try {
+        static const scenes::Scene empty;
+        renderer::RenderSettings settings;
+        settings.width = settings.height = 1;
+        return renderer::Renderer(empty, settings).glRendererString();
+    } catch (const std::exception& error) {
+        warnings.push_back(std::string("could not open a renderer to compare with the profile: ") + error.what());
+        return "";
+    }
+}
+
+void runEstimate(const EstimateOptions& options) {
+    timemodel::DeviceProfile profile;
+    std::string source;
+    std::vector<std::string> warnings;
+    const scenes::Scene scene = scenes::loadScene(options.scene, options.seed);
+    try {
+        if (options.profile.empty()) {
+            bool exact = false;
+            profile = timemodel::shippedProfile(scene.name, &exact);
+            source = "shipped:" + profile.scene;
+        } else {
+            profile = timemodel::loadProfile(options.profile);
+            source = options.profile;
+        }
+    } catch (const timemodel::TimeModelError& error) {
+        throw UsageError(error.what());
+    }
+    std::unique_ptr<timemodel::TimeModel> model;
+    try {
+        model = timemodel::modelFromProfile(profile, options.model);
+    } catch (const timemodel::TimeModelError& error) {
+        throw UsageError(error.what());
+    }
+
+    int width = profile.width, height = profile.height;
+    if (!options.size.empty()) parseSize(options.size, width, height);
+    const int view = scenes::findView(scene, options.view);
+    scenes::Combination combination = scenes::referenceCombination(scene);
+    if (!options.levels.empty()) {
+        combination = parseIntList(options.levels, "--levels");
+        scenes::validateCombination(scene, combination);
+    }
+
+    if (profile.scene != scene.name) {
+        warnings.push_back("the profile was calibrated on scene '" + profile.scene + "', not '" + scene.name + "'");
+    }
+    const std::string glRenderer = options.noRendererCheck ? std::string() : currentGlRenderer(warnings);
+    for (const std::string& w :
+         timemodel::profileWarnings(profile, glRenderer, width, height, timemodel::describeMachine())) {
+        warnings.push_back(w);
+    }
+
+    const timemodel::FrameFeatures features =
+        timemodel::computeFrameFeatures(scene, combination, scene.views[view], width, height);
+    const double predictedMs = model->estimateMs(features);
+
+    for (const std::string& w : warnings) std::cerr << "lodopt: warning: " << source << ": " << w << "\n";
+    if (options.output.json) {
+        nlohmann::json featureJson = nlohmann::json::object();
+        for (timemodel::Feature f : timemodel::allFeatures()) featureJson[timemodel::featureName(f)] = features[f];
+        printJson({{"scene", scene.name},
+                   {"view", scene.views[view].name},
+                   {"levels", combination},
+                   {"width", width},
+                   {"height", height},
+                   {"model", model->name()},
+                   {"profile", source},
+                   {"predicted_ms", predictedMs},
+                   {"features", featureJson},
+                   {"warnings", warnings}});
+        return;
+    }
+    std::cout << "predicted_ms " << predictedMs << " (" << model->name() << " model, " << source << "; "
+              << scene.name << ", view '" << scene.views[view].name << "', " << width << "x" << height << ")\n";
+}
+
+}  // namespace
+
+void addEstimateCommand(CLI::App& app) {
+    auto options = std::make_shared<EstimateOptions>();
+    CLI::App* command = app.add_subcommand("estimate", "Predict the render time of one LOD combination");
+    command->add_option("--profile", options->profile,
+                        "Device profile from 'lodopt calibrate' (default: the one shipped for the scene)");
+    command->add_option("--scene", options->scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
+    command->add_option("--view", options->view, "View name or index")->capture_default_str();
+    command->add_option("--levels", options->levels,
+                        "One level per object, comma-separated (-1 = not drawn); default all 0 (the reference)");
+    command->add_option("--model", options->model, "linear, dong or wimmer (default: the profile's default)");
+    command->add_option("--size", options->size, "WIDTHxHEIGHT (default: the profile's render size)");
+    command->add_option("--seed", options->seed, "Seed of a built-in scene")->capture_default_str();
+    command->add_flag("--no-renderer-check", options->noRendererCheck,
+                      "Do not open an OpenGL context to compare the renderer with the profile's");
+    addOutputOptions(*command, options->output);
+    command->callback([options] { runEstimate(*options); });
+}
+
+}  // namespace lodopt::cli

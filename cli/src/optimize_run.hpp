@@ -1,0 +1,86 @@
+// Shared by optimize, compare and bench: preparing a scene and view, running one algorithm.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "evaluation/evaluation.hpp"
+#include "evaluation/time_cost.hpp"
+#include "optimizer/optimizer.hpp"
+#include "renderer/renderer.hpp"
+#include "scenes/scene.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace lodopt::cli {
+
+struct OptimizeOptions {
+    std::string scene = "harbor";
+    std::string view = "overview";
+    std::string algorithm = "gapso";
+    double budgetMs = 0.0;
+    std::uint64_t seed = 1;
+    std::string size = "512x512";
+    std::string evalPath = "fast";
+    int threads = std::max(1, int(std::thread::hardware_concurrency()));
+    std::string weights = "1,1,1";
+    std::string profile;
+    std::string model;
+    int maxIterations = 50;
+    std::int64_t maxEvaluations = 0;
+    int stableIterations = 15;
+    double maxSeconds = 0.0;
+    bool paper = false;
+    std::string seedFrom;
+    int particles = 0;  // 0 = the algorithm's default
+};
+void addOptimizeOptions(CLI::App& command, OptimizeOptions& options);
+
+// "gapso, pso, ..." for help texts; throws UsageError for an unknown name.
+std::string algorithmList();
+void checkAlgorithmName(const std::string& name);
+
+struct PreparedScene {
+    scenes::Scene scene;
+    std::vector<int> views;
+    renderer::RenderSettings settings;
+    metrics::MetricParameters metrics;
+    evaluation::FrameTimeEstimator estimator;
+    std::string timeModelName;
+    std::unique_ptr<renderer::Renderer> renderer;
+};
+PreparedScene prepareScene(const OptimizeOptions& options);
+
+// Everything about one view that does not depend on the algorithm: reusable across runs.
+struct ViewContext {
+    std::unique_ptr<evaluation::ViewSetup> setup;
+    std::unique_ptr<optimizer::Evaluator> evaluator;
+    std::unique_ptr<evaluation::TimeModelCost> cost;
+    optimizer::Problem problem;
+};
+ViewContext prepareView(PreparedScene& prepared, int view, const OptimizeOptions& options);
+
+// Runs `algorithm` with `seed` on a prepared view.
+optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions& options,
+                               const std::string& algorithm, std::uint64_t seed);
+
+struct ViewRun {
+    std::unique_ptr<evaluation::ViewSetup> setup;
+    optimizer::Result result;
+    nlohmann::json json;  // the result.json document
+    renderer::Frame optimizedImage;
+};
+ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& options,
+                     const std::string& algorithm, std::uint64_t seed);
+
+void printOptimizeSummary(std::ostream& out, const nlohmann::json& result);
+
+}  // namespace lodopt::cli

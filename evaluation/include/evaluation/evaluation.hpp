@@ -1,0 +1,145 @@
+// Evaluation: joins the renderer, the metrics and the time model behind the optimizer's
+// Evaluator and Cost interfaces, for one scene, one viewpoint and one image size.
+//
+// Preparation (ViewSetup), once per view:
+//  1. render the reference (every object at level 0) and every level of every object as a
+//     layer (color + depth, cropped to its covered pixels);
+//  2. skip what the view does not need: an object none of whose levels covers a pixel (outside
+//     the frustum, or smaller than a pixel) or whose every level is hidden behind the other
+//     objects' level-0 depth is fixed at its coarsest level and left out of the search; levels
+//     whose layer is bit-identical to the next coarser level's are merged into that coarser
+//     (cheaper) level;
+//  3. the remaining objects become the optimizer's variables; variable i's option j is the
+//     scene level optionLevels[i][j] (option 0 the finest distinct level).
+//
+// Fast path (LayerEvaluator, the default): a candidate is composited from the layers, only in
+// the rectangles of objects whose level changed since the state's previous candidate, and the
+// metrics are updated incrementally in those rectangles. Per-thread states make batches
+// parallel; because the incremental metrics equal a from-scratch computation to the bit, the
+// scores do not depend on the order or the thread count.
+// Full path (FullRenderEvaluator, `--eval full`): render the whole combination with OpenGL
+// and compute the metrics from scratch; serial (one GL context).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "metrics/metrics.hpp"
+#include "optimizer/problem.hpp"
+#include "renderer/renderer.hpp"
+#include "scenes/scene.hpp"
+
+namespace lodopt::evaluation {
+
+// Why an object is not searched.
+enum class SkipReason { None, OutsideFrustum, BelowOnePixel, Hidden };
+const char* toString(SkipReason reason);
+
+struct ObjectSetup {
+    SkipReason skip = SkipReason::None;
+    int fixedLevel = 0;               // the level used when skipped (the coarsest)
+    std::vector<int> optionLevels;    // scene levels searched, finest first (empty when skipped)
+    int mergedLevels = 0;             // levels merged into a coarser identical one
+    std::uint64_t referencePixels = 0;  // pixels covered by level 0 alone
+};
+
+struct SkipSummary {
+    int searchedObjects = 0;
+    int outsideFrustum = 0;
+    int belowOnePixel = 0;
+    int hidden = 0;
+    int mergedLevels = 0;
+};
+
+// The prepared view: reference image, layers and the variable mapping.
+class ViewSetup {
+public:
+    // Renders the reference and all layers with `renderer` (which must draw `scene`).
+    ViewSetup(const scenes::Scene& scene, const scenes::Camera& camera, renderer::Renderer& renderer);
+
+    const scenes::Scene& scene() const { return mScene; }
+    const scenes::Camera& camera() const { return mCamera; }
+    const renderer::Frame& reference() const { return mReference; }
+    int width() const { return mReference.width; }
+    int height() const { return mReference.height; }
+    glm::vec4 clearColor() const { return mClearColor; }
+
+    const std::vector<ObjectSetup>& objects() const { return mObjects; }
+    const SkipSummary& skipSummary() const { return mSkip; }
+    // Scene object index of each optimizer variable.
+    const std::vector<int>& variableObjects() const { return mVariableObjects; }
+    // Options per variable (optimizer::Problem::levelCounts).
+    std::vector<int> levelCounts() const;
+    // The scene combination of an optimizer combination (skipped objects at their fixed level).
+    scenes::Combination toScene(const optimizer::Combination& combination) const;
+    // The optimizer combination closest to a scene combination (each variable's option whose
+    // level is the smallest >= the scene level; the coarsest option otherwise).
+    optimizer::Combination fromScene(const scenes::Combination& combination) const;
+    // The layer of object `object` at scene level `level`.
+    const renderer::Layer& layer(int object, int level) const { return mLayers[object][level]; }
+
+    double setupSeconds() const { return mSetupSeconds; }
+
+private:
+    const scenes::Scene& mScene;
+    scenes::Camera mCamera;
+    glm::vec4 mClearColor;
+    renderer::Frame mReference;
+    std::vector<std::vector<renderer::Layer>> mLayers;  // [object][level]
+    std::vector<ObjectSetup> mObjects;
+    std::vector<int> mVariableObjects;
+    SkipSummary mSkip;
+    double mSetupSeconds = 0.0;
+};
+
+// Names of the score components both evaluators report, in Score::components order.
+const std::vector<std::string>& componentNames();
+// A metrics result as an optimizer score (fitness + ssim, boundary and information
+// fidelities, precision, recall).
+optimizer::Score toScore(const metrics::MetricResult& result);
+
+// The fast path. `threads` >= 1 states evaluate a batch in parallel.
+class LayerEvaluator final : public optimizer::Evaluator {
+public:
+    LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads = 1);
+    ~LayerEvaluator() override;
+
+    optimizer::Score evaluate(const optimizer::Combination& combination) override;
+    void evaluateBatch(std::span<const optimizer::Combination> combinations,
+                       std::span<optimizer::Score> scores) override;
+    std::vector<std::string> componentNames() const override { return evaluation::componentNames(); }
+
+    // Full metrics of a combination (every component), through state 0.
+    metrics::MetricResult metricsOf(const optimizer::Combination& combination);
+    // The composited image of a combination.
+    renderer::Frame imageOf(const optimizer::Combination& combination);
+
+private:
+    struct State;
+    const ViewSetup& mSetup;
+    metrics::MetricParameters mParameters;
+    std::vector<std::unique_ptr<State>> mStates;
+};
+
+// The full path: renders every candidate and scores it from scratch.
+class FullRenderEvaluator final : public optimizer::Evaluator {
+public:
+    FullRenderEvaluator(const ViewSetup& setup, renderer::Renderer& renderer,
+                        const metrics::MetricParameters& parameters);
+    optimizer::Score evaluate(const optimizer::Combination& combination) override;
+    std::vector<std::string> componentNames() const override { return evaluation::componentNames(); }
+    metrics::MetricResult metricsOf(const optimizer::Combination& combination);
+
+private:
+    const ViewSetup& mSetup;
+    renderer::Renderer& mRenderer;
+    metrics::MetricParameters mParameters;
+    renderer::Frame mFrame;
+};
+
+// Plain-number hints for the distance, importance and screen-size baselines.
+std::vector<optimizer::VariableHints> computeHints(const ViewSetup& setup);
+
+}  // namespace lodopt::evaluation

@@ -1,0 +1,35 @@
+// The optimizer's Cost for one prepared view: the time model's prediction for the scene
+// combination that an optimizer combination stands for (skipped objects at their fixed level).
+//
+// Features come from a timemodel::FeatureTable built once per view (per-object, per-level
+// contributions), so a prediction is a sum over objects plus one model evaluation.
+#pragma once
+
+#include <functional>
+
+#include "evaluation/evaluation.hpp"
+#include "timemodel/features.hpp"
+
+namespace lodopt::evaluation {
+
+// Milliseconds predicted for a frame's features (a fitted time model).
+using FrameTimeEstimator = std::function<double(const timemodel::FrameFeatures&)>;
+
+class TimeModelCost final : public optimizer::Cost {
+public:
+    // `setup` must outlive the cost; `estimator` returns finite milliseconds >= 0.
+    TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator);
+
+    double predictMs(const optimizer::Combination& combination) const override;
+    double deltaMs(const optimizer::Combination& combination, int variable, int newLevel) const override;
+
+    double predictSceneMs(const scenes::Combination& combination) const;
+    const timemodel::FeatureTable& table() const { return mTable; }
+
+private:
+    const ViewSetup& mSetup;
+    timemodel::FeatureTable mTable;
+    FrameTimeEstimator mEstimator;
+};
+
+}  // namespace lodopt::evaluation

@@ -1,0 +1,189 @@
+// The fast (layers + incremental metrics) and full (render + metrics) evaluation paths.
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include "evaluation/evaluation.hpp"
+#include "metrics/incremental_evaluator.hpp"
+
+namespace lodopt::evaluation {
+
+const std::vector<std::string>& componentNames() {
+    static const std::vector<std::string> names = {"ssim", "boundary_entropy", "information_entropy", "precision",
+                                                   "recall"};
+    return names;
+}
+
+optimizer::Score toScore(const metrics::MetricResult& result) {
+    optimizer::Score score;
+    score.fitness = result.fitness;
+    score.components[0] = result.ssimFidelity;
+    score.components[1] = result.boundaryEntropy.fidelity;
+    score.components[2] = result.informationEntropy.fidelity;
+    score.components[3] = result.precision;
+    score.components[4] = result.recall;
+    score.componentCount = 5;
+    return score;
+}
+
+namespace {
+
+metrics::ImageView viewOf(const renderer::Frame& frame) {
+    return metrics::makeImageView(frame.rgba.data(), frame.width, frame.height, 4);
+}
+
+renderer::PixelRect unite(const renderer::PixelRect& a, const renderer::PixelRect& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+}  // namespace
+
+// One evaluation state: the last candidate's composite and incremental metrics.
+struct LayerEvaluator::State {
+    renderer::Frame frame;
+    std::vector<const renderer::Layer*> layers;  // per scene object, the current layer
+    optimizer::Combination current;
+    metrics::IncrementalEvaluator metrics;
+    std::vector<renderer::PixelRect> dirty;
+
+    State(const ViewSetup& setup, const metrics::MetricParameters& parameters)
+        : metrics(viewOf(setup.reference()), parameters) {
+        current.assign(setup.variableObjects().size(), 0);
+        const scenes::Combination levels = setup.toScene(current);
+        for (std::size_t o = 0; o < levels.size(); ++o) layers.push_back(&setup.layer(int(o), levels[o]));
+        renderer::composite(layers, setup.width(), setup.height(), setup.clearColor(), frame);
+        metrics.setCandidate(viewOf(frame));
+        dirty.reserve(current.size());
+    }
+
+    void moveTo(const ViewSetup& setup, const optimizer::Combination& combination) {
+        dirty.clear();
+        const std::vector<int>& objects = setup.variableObjects();
+        for (std::size_t v = 0; v < combination.size(); ++v) {
+            if (combination[v] == current[v]) continue;
+            const int object = objects[v];
+            const renderer::Layer* next = &setup.layer(object, setup.objects()[object].optionLevels[combination[v]]);
+            renderer::PixelRect rect = unite(layers[object]->rect, next->rect);
+            layers[object] = next;
+            current[v] = combination[v];
+            if (!rect.empty()) dirty.push_back(rect);
+        }
+        if (dirty.empty()) return;
+        std::uint64_t area = 0;
+        for (const renderer::PixelRect& rect : dirty) {
+            renderer::compositeRect(layers, rect, setup.clearColor(), frame);
+            area += std::uint64_t(rect.width()) * rect.height();
+        }
+        // Past half the image, one full metric pass beats many overlapping updates.
+        if (2 * area > std::uint64_t(frame.width) * frame.height) {
+            metrics.setCandidate(viewOf(frame));
+        } else {
+            for (const renderer::PixelRect& rect : dirty) {
+                metrics.updateRect(viewOf(frame), rect.x0, rect.y0, rect.x1, rect.y1);
+            }
+        }
+    }
+};
+
+LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads)
+    : mSetup(setup), mParameters(parameters) {
+    threads = std::max(threads, 1);
+    for (int t = 0; t < threads; ++t) mStates.push_back(std::make_unique<State>(setup, parameters));
+}
+
+LayerEvaluator::~LayerEvaluator() = default;
+
+optimizer::Score LayerEvaluator::evaluate(const optimizer::Combination& combination) {
+    mStates[0]->moveTo(mSetup, combination);
+    return toScore(mStates[0]->metrics.result());
+}
+
+void LayerEvaluator::evaluateBatch(std::span<const optimizer::Combination> combinations,
+                                   std::span<optimizer::Score> scores) {
+    const std::size_t threads = std::min(mStates.size(), combinations.size());
+    if (threads <= 1) {
+        for (std::size_t k = 0; k < combinations.size(); ++k) scores[k] = evaluate(combinations[k]);
+        return;
+    }
+    // Contiguous chunks: neighbouring candidates tend to share levels, which keeps the
+    // dirty rectangles small. Scores do not depend on the split (bit-exact metrics).
+    std::vector<std::thread> workers;
+    const std::size_t chunk = (combinations.size() + threads - 1) / threads;
+    for (std::size_t t = 0; t < threads; ++t) {
+        workers.emplace_back([&, t] {
+            const std::size_t begin = t * chunk, end = std::min(combinations.size(), begin + chunk);
+            for (std::size_t k = begin; k < end; ++k) {
+                mStates[t]->moveTo(mSetup, combinations[k]);
+                scores[k] = toScore(mStates[t]->metrics.result());
+            }
+        });
+    }
+    for (std::thread& worker : workers) worker.join();
+}
+
+metrics::MetricResult LayerEvaluator::metricsOf(const optimizer::Combination& combination) {
+    mStates[0]->moveTo(mSetup, combination);
+    return mStates[0]->metrics.result();
+}
+
+renderer::Frame LayerEvaluator::imageOf(const optimizer::Combination& combination) {
+    mStates[0]->moveTo(mSetup, combination);
+    return mStates[0]->frame;
+}
+
+FullRenderEvaluator::FullRenderEvaluator(const ViewSetup& setup, renderer::Renderer& renderer,
+                                         const metrics::MetricParameters& parameters)
+    : mSetup(setup), mRenderer(renderer), mParameters(parameters) {}
+
+metrics::MetricResult FullRenderEvaluator::metricsOf(const optimizer::Combination& combination) {
+    mRenderer.render(mSetup.toScene(combination), mSetup.camera(), mFrame);
+    return metrics::evaluate(viewOf(mFrame), viewOf(mSetup.reference()), mParameters);
+}
+
+optimizer::Score FullRenderEvaluator::evaluate(const optimizer::Combination& combination) {
+    return toScore(metricsOf(combination));
+}
+
+std::vector<optimizer::VariableHints> computeHints(const ViewSetup& setup) {
+    const scenes::Scene& scene = setup.scene();
+    const scenes::Camera& camera = setup.camera();
+    const glm::vec3 viewDirection = glm::normalize(camera.target - camera.position);
+    const double tanHalfFov = std::tan(glm::radians(double(camera.fovYDegrees)) / 2.0);
+    std::vector<optimizer::VariableHints> hints;
+    for (int object : setup.variableObjects()) {
+        const scenes::Object& sceneObject = scene.objects[object];
+        const scenes::Bounds bounds = scenes::worldBounds(sceneObject, 0);
+        const glm::vec3 toObject = bounds.sphereCenter - camera.position;
+        const double distance = std::max(double(glm::length(toObject)), 1e-6);
+        optimizer::VariableHints hint;
+        hint.distance = distance;
+        const double cosine = glm::dot(glm::normalize(toObject), viewDirection);
+        hint.viewAngleRadians = std::min(std::acos(std::clamp(cosine, -1.0, 1.0)), 1.5);
+        // Dong et al.'s s: the projected area, here in hundreds of covered pixels at level 0.
+        hint.projectedArea = std::max(double(setup.objects()[object].referencePixels) / 100.0, 1e-3);
+        // Bounding-sphere diameter over the viewport height (what engines call screen size).
+        const double pixelsPerUnit = double(setup.height()) / (2.0 * distance * tanHalfFov);
+        hint.screenCoverage = 2.0 * bounds.sphereRadius * pixelsPerUnit / double(setup.height());
+        const std::vector<int>& options = setup.objects()[object].optionLevels;
+        bool allCoverage = true;
+        for (int level : options) allCoverage = allCoverage && sceneObject.levels[level].screenCoverage.has_value();
+        const double triangles0 = double(std::max<std::uint64_t>(sceneObject.levels[0].stats.triangles, 1));
+        for (int level : options) {
+            const scenes::Level& sceneLevel = sceneObject.levels[level];
+            if (allCoverage) hint.levelScreenCoverage.push_back(*sceneLevel.screenCoverage);
+            // Geometric error relative to the object's size: meshoptimizer's when the level was
+            // generated, else a proxy from the triangle ratio (authored levels carry none).
+            double relativeError = sceneLevel.simplificationError;
+            if (relativeError <= 0.0 && level > 0) {
+                relativeError = 0.25 * (1.0 - std::sqrt(double(sceneLevel.stats.triangles) / triangles0));
+            }
+            hint.levelPixelError.push_back(std::max(relativeError, 0.0) * 2.0 * bounds.sphereRadius * pixelsPerUnit);
+        }
+        hints.push_back(std::move(hint));
+    }
+    return hints;
+}
+
+}  // namespace lodopt::evaluation

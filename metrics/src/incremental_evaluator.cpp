@@ -1,0 +1,322 @@
+// Incremental evaluation: keeps the reference statistics and the candidate's per-pixel state
+// and updates them from a dirty rectangle (see the header for the exactness argument).
+//
+// The state starts as "candidate = all-black gray, nothing counted": histograms hold every
+// pixel in bin 0, classes and counts are 0, maps are 0. That state is consistent, so the
+// constructor's setCandidate(reference) and every later setCandidate are plain updateRect
+// calls over the whole image: one code path for full and incremental evaluation.
+#include "metrics/incremental_evaluator.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "kernels.hpp"
+
+namespace lodopt::metrics {
+
+struct IncrementalEvaluator::State {
+    MetricParameters parameters;
+    int width = 0, height = 0, channels = 0;
+    detail::GrayScale grayScale;
+    bool ssimOn = false, boundaryOn = false, informationOn = false, precisionRecallOn = false;
+
+    std::vector<std::int32_t> candidateGray, referenceGray, rowGray;
+    std::vector<std::uint16_t> rowBins;
+    std::vector<std::uint8_t> rowClasses;
+
+    detail::SsimKernel kernel;
+    std::vector<double> referenceMean, referenceVariance;
+    detail::PooledMap ssimMap;
+    detail::SsimScratch scratch;
+
+    double boundaryReference = 0;
+    detail::SobelBinning sobel;
+    std::vector<std::uint16_t> sobelBins;           // per pixel (interior ones used)
+    std::vector<std::uint64_t> boundaryHistogram;   // Histogram mode
+    detail::LaneHistogram boundaryLanes;
+    std::uint64_t interiorPixels = 0;
+    detail::PooledMap robertsTerms;                 // Paper mode
+
+    double informationReference = 0;
+    std::array<std::uint64_t, 256> grayHistogram{};  // Histogram mode
+    detail::LaneHistogram grayLanes;
+    detail::PooledMap intensityTerms;               // Paper mode
+    std::int64_t intensitySum = 0;
+
+    detail::CoverageRule coverage;
+    std::vector<std::uint8_t> referencePixels;  // packed rows
+    std::vector<std::uint8_t> classes;          // PixelClass bits per pixel
+    std::uint64_t truePositives = 0, falsePositives = 0, falseNegatives = 0;
+
+    void checkCandidate(const ImageView& candidate) const;
+    void update(const ImageView& candidate, int x0, int y0, int x1, int y1);
+    void updatePixels(const ImageView& candidate, int x0, int y0, int x1, int y1, bool replace);
+    void updateBoundary(int x0, int y0, int x1, int y1, bool replace);
+    void updateSsim(int x0, int y0, int x1, int y1);
+};
+
+IncrementalEvaluator::IncrementalEvaluator(const ImageView& reference, const MetricParameters& parameters)
+    : mState(std::make_unique<State>()) {
+    validateParameters(parameters);
+    detail::validateView(reference, "reference image");
+    State& s = *mState;
+    s.parameters = parameters;
+    s.width = reference.width;
+    s.height = reference.height;
+    s.channels = reference.channels;
+    s.grayScale = detail::grayScale(parameters.grayWeights);
+    s.ssimOn = parameters.ssimWeight > 0;
+    s.boundaryOn = parameters.boundaryEntropyWeight > 0;
+    s.informationOn = parameters.informationEntropyWeight > 0;
+    s.precisionRecallOn = parameters.computePrecisionRecall;
+    const std::size_t pixels = std::size_t(s.width) * s.height;
+
+    s.candidateGray.assign(pixels, 0);
+    s.rowGray.assign(std::size_t(s.width), 0);
+    if (s.ssimOn) {
+        s.kernel = detail::makeSsimKernel(parameters, s.width, s.height, s.grayScale);
+        detail::grayImage(reference, s.grayScale, s.referenceGray);
+        const std::size_t mapSize = std::size_t(s.kernel.mapWidth) * s.kernel.mapHeight;
+        s.referenceMean.assign(mapSize, 0.0);
+        s.referenceVariance.assign(mapSize, 0.0);
+        s.scratch.reserve(s.kernel);
+        detail::ssimReferenceStatistics(s.referenceGray.data(), std::size_t(s.width), s.kernel, 0, 0,
+                                        s.kernel.mapWidth, s.kernel.mapHeight, s.scratch, s.referenceMean.data(),
+                                        s.referenceVariance.data(), std::size_t(s.kernel.mapWidth));
+        s.ssimMap.resize(s.kernel.mapWidth, s.kernel.mapHeight);
+    }
+    if (s.boundaryOn) {
+        s.boundaryReference = boundaryEntropy(reference, parameters);
+        if (parameters.boundaryEntropyMode == EntropyMode::Histogram) {
+            s.sobel = detail::makeSobelBinning(parameters.boundaryHistogramBins, s.grayScale);
+            s.sobelBins.assign(pixels, 0);
+            s.boundaryHistogram.assign(std::size_t(s.sobel.bins), 0);
+            s.interiorPixels = std::uint64_t(std::max(s.width - 2, 0)) * std::uint64_t(std::max(s.height - 2, 0));
+            s.boundaryHistogram[0] = s.interiorPixels;  // an all-zero gray image has no edges
+            s.boundaryLanes.resize(s.sobel.bins);
+            s.rowBins.assign(std::size_t(s.width), 0);
+        } else if (s.width >= 2 && s.height >= 2) {
+            s.robertsTerms.resize(s.width - 1, s.height - 1);
+        }
+    }
+    if (s.informationOn) {
+        s.informationReference = informationEntropy(reference, parameters);
+        if (parameters.informationEntropyMode == EntropyMode::Histogram) {
+            s.grayHistogram[0] = pixels;
+            s.grayLanes.resize(256);
+        } else {
+            s.intensityTerms.resize(s.width, s.height);
+        }
+    }
+    if (s.precisionRecallOn) {
+        s.coverage = detail::makeCoverageRule(parameters, s.channels, s.grayScale);
+        const std::size_t rowBytes = std::size_t(s.width) * s.channels;
+        s.referencePixels.resize(rowBytes * s.height);
+        for (int y = 0; y < s.height; ++y) {
+            std::copy_n(reference.pixels + y * reference.rowStride, rowBytes, s.referencePixels.data() + y * rowBytes);
+        }
+        s.classes.assign(pixels, 0);
+        s.rowClasses.assign(std::size_t(s.width), 0);
+    }
+    setCandidate(reference);
+}
+
+IncrementalEvaluator::~IncrementalEvaluator() = default;
+IncrementalEvaluator::IncrementalEvaluator(IncrementalEvaluator&&) noexcept = default;
+IncrementalEvaluator& IncrementalEvaluator::operator=(IncrementalEvaluator&&) noexcept = default;
+
+void IncrementalEvaluator::setCandidate(const ImageView& candidate) {
+    mState->checkCandidate(candidate);
+    mState->update(candidate, 0, 0, mState->width, mState->height);
+}
+
+void IncrementalEvaluator::updateRect(const ImageView& candidate, int x0, int y0, int x1, int y1) {
+    mState->checkCandidate(candidate);
+    mState->update(candidate, std::max(x0, 0), std::max(y0, 0), std::min(x1, mState->width),
+                   std::min(y1, mState->height));
+}
+
+void IncrementalEvaluator::State::checkCandidate(const ImageView& candidate) const {
+    detail::validateView(candidate, "candidate image");
+    if (candidate.width != width || candidate.height != height || candidate.channels != channels) {
+        throw MetricError("candidate image is " + std::to_string(candidate.width) + "x" +
+                          std::to_string(candidate.height) + " with " + std::to_string(candidate.channels) +
+                          " channels but the reference is " + std::to_string(width) + "x" + std::to_string(height) +
+                          " with " + std::to_string(channels));
+    }
+}
+
+void IncrementalEvaluator::State::update(const ImageView& candidate, int x0, int y0, int x1, int y1) {
+    if (x0 >= x1 || y0 >= y1) return;
+    // A whole-image update restarts the counts instead of subtracting every old pixel: the
+    // per-pixel values come from the same functions, and counts are integers, so both ways
+    // give the same histograms.
+    const bool replace = x0 == 0 && y0 == 0 && x1 == width && y1 == height;
+    // Order matters: the gray image must be current before Sobel and SSIM read it.
+    updatePixels(candidate, x0, y0, x1, y1, replace);
+    if (boundaryOn) updateBoundary(x0, y0, x1, y1, replace);
+    if (ssimOn) updateSsim(x0, y0, x1, y1);
+}
+
+void IncrementalEvaluator::State::updatePixels(const ImageView& candidate, int x0, int y0, int x1, int y1,
+                                               bool replace) {
+    const bool histogram = informationOn && parameters.informationEntropyMode == EntropyMode::Histogram;
+    const bool intensity = informationOn && !histogram;
+    const std::size_t rowBytes = std::size_t(width) * channels;
+    const int count = x1 - x0;
+    std::int64_t tp = 0, fp = 0, fn = 0;
+    const detail::GrayScale gray = grayScale;  // a local: no aliasing with the histogram lanes
+    if (replace) {
+        grayHistogram.fill(0);
+        intensitySum = 0;
+        truePositives = falsePositives = falseNegatives = 0;
+    }
+    for (int y = y0; y < y1; ++y) {
+        const std::uint8_t* row = candidate.pixels + y * candidate.rowStride + std::size_t(x0) * channels;
+        detail::grayRow(row, channels, count, gray, rowGray.data());
+        std::int32_t* stored = candidateGray.data() + std::size_t(y) * width + x0;
+        if (histogram) {
+            if (!replace) {
+                for (int i = 0; i < count; ++i) grayLanes.remove(i, detail::grayBin(stored[i], gray));
+            }
+            for (int i = 0; i < count; ++i) grayLanes.add(i, detail::grayBin(rowGray[std::size_t(i)], gray));
+        }
+        if (intensity) {
+            double* terms = intensityTerms.row(y) + x0;
+            for (int i = 0; i < count; ++i) {
+                const std::int32_t value = rowGray[std::size_t(i)];
+                intensitySum += std::int64_t(value) - (replace ? 0 : stored[i]);
+                terms[i] = detail::intensityTerm(value);
+            }
+        }
+        std::copy_n(rowGray.data(), count, stored);
+        if (precisionRecallOn) {
+            detail::classifyRow(row, referencePixels.data() + y * rowBytes + std::size_t(x0) * channels, count,
+                                coverage, rowClasses.data());
+            std::uint8_t* __restrict before = classes.data() + std::size_t(y) * width + x0;
+            const std::uint8_t* __restrict now = rowClasses.data();
+            // Bit counting (vectorises): each class bit adds to its counter, the old one subtracts.
+            for (int i = 0; i < count; ++i) {
+                const int bits = now[i];
+                tp += bits & detail::kTruePositive;
+                fp += (bits & detail::kFalsePositive) >> 1;
+                fn += (bits & detail::kFalseNegative) >> 2;
+            }
+            if (!replace) {
+                for (int i = 0; i < count; ++i) {
+                    const int bits = before[i];
+                    tp -= bits & detail::kTruePositive;
+                    fp -= (bits & detail::kFalsePositive) >> 1;
+                    fn -= (bits & detail::kFalseNegative) >> 2;
+                }
+            }
+            std::copy_n(now, count, before);
+        }
+    }
+    if (histogram) grayLanes.mergeInto(grayHistogram.data());
+    if (intensity) intensityTerms.refresh(x0, y0, x1, y1);
+    // Modular arithmetic: a negative change subtracts.
+    truePositives += std::uint64_t(tp);
+    falsePositives += std::uint64_t(fp);
+    falseNegatives += std::uint64_t(fn);
+}
+
+void IncrementalEvaluator::State::updateBoundary(int x0, int y0, int x1, int y1, bool replace) {
+    const std::ptrdiff_t stride = width;
+    if (parameters.boundaryEntropyMode == EntropyMode::Histogram) {
+        // A changed pixel moves the Sobel magnitude of its 8 neighbours: grow by 1, keep interior.
+        const int bx0 = std::max(x0 - 1, 1), bx1 = std::min(x1 + 1, width - 1);
+        const int by0 = std::max(y0 - 1, 1), by1 = std::min(y1 + 1, height - 1);
+        if (bx0 >= bx1 || by0 >= by1) return;
+        const int count = bx1 - bx0;
+        if (replace) std::fill(boundaryHistogram.begin(), boundaryHistogram.end(), 0);
+        for (int y = by0; y < by1; ++y) {
+            const std::size_t at = std::size_t(y) * width + bx0;
+            detail::sobelBinsRow(candidateGray.data() + at, stride, count, sobel, rowBins.data());
+            std::uint16_t* bins = sobelBins.data() + at;
+            if (!replace) {
+                for (int i = 0; i < count; ++i) boundaryLanes.remove(i, bins[i]);
+            }
+            for (int i = 0; i < count; ++i) boundaryLanes.add(i, rowBins[std::size_t(i)]);
+            std::copy_n(rowBins.data(), count, bins);
+        }
+        boundaryLanes.mergeInto(boundaryHistogram.data());
+        return;
+    }
+    if (robertsTerms.empty()) return;
+    // The Roberts term at (x, y) reads (x + 1, y + 1): pixels up to one left/above change.
+    const int rx0 = std::max(x0 - 1, 0), rx1 = std::min(x1, width - 1);
+    const int ry0 = std::max(y0 - 1, 0), ry1 = std::min(y1, height - 1);
+    const double inverseScale = 1.0 / grayScale.scale;
+    for (int y = ry0; y < ry1; ++y) {
+        const std::int32_t* gray = candidateGray.data() + std::size_t(y) * width;
+        double* terms = robertsTerms.row(y);
+        for (int x = rx0; x < rx1; ++x) terms[x] = detail::robertsTerm(gray + x, stride, inverseScale);
+    }
+    robertsTerms.refresh(rx0, ry0, rx1, ry1);
+}
+
+void IncrementalEvaluator::State::updateSsim(int x0, int y0, int x1, int y1) {
+    // Map (mx, my) covers pixels [mx, mx + window): windows reaching back window - 1 pixels.
+    const int mx0 = std::max(x0 - kernel.window + 1, 0), mx1 = std::min(x1, kernel.mapWidth);
+    const int my0 = std::max(y0 - kernel.window + 1, 0), my1 = std::min(y1, kernel.mapHeight);
+    if (mx0 >= mx1 || my0 >= my1) return;
+    const std::size_t mapStride = std::size_t(kernel.mapWidth);
+    const std::size_t origin = std::size_t(my0) * mapStride + std::size_t(mx0);
+    detail::ssimWindows(candidateGray.data(), referenceGray.data(), std::size_t(width), kernel, mx0, my0, mx1, my1,
+                        referenceMean.data() + origin, referenceVariance.data() + origin, mapStride, scratch,
+                        ssimMap.row(my0) + mx0, mapStride);
+    ssimMap.refresh(mx0, my0, mx1, my1);
+}
+
+MetricResult IncrementalEvaluator::result() const {
+    const State& s = *mState;
+    MetricResult result;
+    if (s.ssimOn) {
+        result.ssimComputed = true;
+        result.ssim = s.ssimMap.total() / (double(s.kernel.mapWidth) * double(s.kernel.mapHeight));
+    }
+    if (s.boundaryOn) {
+        result.boundaryEntropy.computed = true;
+        result.boundaryEntropy.reference = s.boundaryReference;
+        result.boundaryEntropy.candidate =
+            s.parameters.boundaryEntropyMode == EntropyMode::Histogram
+                ? detail::histogramEntropy(s.boundaryHistogram.data(), s.sobel.bins, s.interiorPixels)
+                : s.robertsTerms.total() + 0.0;
+    }
+    if (s.informationOn) {
+        result.informationEntropy.computed = true;
+        result.informationEntropy.reference = s.informationReference;
+        const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
+        result.informationEntropy.candidate =
+            s.parameters.informationEntropyMode == EntropyMode::Histogram
+                ? detail::histogramEntropy(s.grayHistogram.data(), 256, pixels)
+                : detail::intensityShareEntropy(s.intensitySum, s.intensityTerms.total(), pixels);
+    }
+    if (s.precisionRecallOn) {
+        const PrecisionRecall pr = precisionRecallFromCounts(s.truePositives, s.falsePositives, s.falseNegatives);
+        result.precisionRecallComputed = true;
+        result.truePositives = pr.truePositives;
+        result.falsePositives = pr.falsePositives;
+        result.falseNegatives = pr.falseNegatives;
+        result.precision = pr.precision;
+        result.recall = pr.recall;
+    }
+    fuse(result, s.parameters);
+    return result;
+}
+
+const MetricParameters& IncrementalEvaluator::parameters() const { return mState->parameters; }
+int IncrementalEvaluator::width() const { return mState->width; }
+int IncrementalEvaluator::height() const { return mState->height; }
+int IncrementalEvaluator::channels() const { return mState->channels; }
+const double* IncrementalEvaluator::ssimMap() const {
+    return mState->ssimOn ? mState->ssimMap.values() : nullptr;
+}
+SsimMapSize IncrementalEvaluator::ssimMapSize() const {
+    const State& s = *mState;
+    if (!s.ssimOn) return metrics::ssimMapSize(s.width, s.height, s.parameters);
+    return {s.kernel.mapWidth, s.kernel.mapHeight, s.kernel.window};
+}
+
+}  // namespace lodopt::metrics

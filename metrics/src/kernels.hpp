@@ -1,0 +1,198 @@
+// Per-pixel kernels shared by the one-shot functions and IncrementalEvaluator.
+//
+// Exactness rests on one rule: a value (gray pixel, SSIM window, Sobel bin, pooled sum) is
+// computed by exactly one function here, with a fixed order of operations that does not
+// depend on which rectangle is being processed. Both paths call these functions, so they
+// produce the same bits.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "metrics/metrics.hpp"
+
+// The hot loops are compiled for AVX-512, AVX2 and baseline x86-64 and picked at load time
+// (GCC/Clang target_clones). Contraction into FMA is off for this library (CMake), so every
+// clone rounds identically: only the speed differs.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(LODOPT_NO_TARGET_CLONES)
+#define LODOPT_METRICS_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define LODOPT_METRICS_CLONES
+#endif
+#if defined(__GNUC__) || defined(__clang__)
+#define LODOPT_METRICS_INLINE inline __attribute__((always_inline))
+#else
+#define LODOPT_METRICS_INLINE inline
+#endif
+
+namespace lodopt::metrics::detail {
+
+// --- Images and gray ----------------------------------------------------------------------
+
+// Throws MetricError when `view` is not a usable image; `what` names it ("candidate image").
+void validateView(const ImageView& view, const char* what);
+// Both valid, same width, height and channel count; throws MetricError otherwise.
+void validatePair(const ImageView& candidate, const ImageView& reference);
+
+// Gray scaled by `scale` (a power of ten) so it is an exact integer:
+// gray * scale = r R + g G + b B (gray images: scale V).
+struct GrayScale {
+    std::int32_t r = 30, g = 59, b = 11, scale = 100;
+    // ceil(2^40 / scale): (n * binMultiplier) >> 40 == n / scale for every n < 2^23, which
+    // covers every scaled gray value (< 2.6e6); a hardware division per pixel is slower.
+    std::uint64_t binMultiplier = ((std::uint64_t(1) << 40) + 99) / 100;
+};
+GrayScale grayScale(GrayWeights weights);
+// Scaled gray of `count` pixels starting at `pixels` (interleaved, `channels` bytes each).
+void grayRow(const std::uint8_t* pixels, int channels, int count, const GrayScale& gray, std::int32_t* out);
+// Whole image into `out` (width * height values, rows packed).
+void grayImage(const ImageView& image, const GrayScale& gray, std::vector<std::int32_t>& out);
+
+// Histogram bin 0..255 of a scaled gray value: the gray value rounded half up.
+inline int grayBin(std::int32_t scaledGray, const GrayScale& gray) {
+    return int((std::uint64_t(scaledGray + gray.scale / 2) * gray.binMultiplier) >> 40);
+}
+
+// --- Pooling ------------------------------------------------------------------------------
+
+// Map sums are pooled as: tiles of kPoolTile columns (4 interleaved accumulators), then the
+// row's tiles in order, then the rows in order. A changed rectangle re-pools only its tiles.
+constexpr int kPoolTile = 64;
+inline int poolTiles(int width) { return (width + kPoolTile - 1) / kPoolTile; }
+double tileSum(const double* values, int count);
+// Sum of one row of `width` values; writes its tile sums to `tileSums` when not null.
+double rowSum(const double* row, int width, double* tileSums);
+double sequentialSum(const double* values, int count);
+
+// A map of per-pixel values kept with its tile and row sums.
+class PooledMap {
+public:
+    void resize(int width, int height);  // all values 0
+    int width() const { return mWidth; }
+    int height() const { return mHeight; }
+    double* row(int y) { return mValues.data() + std::size_t(y) * mWidth; }
+    const double* values() const { return mValues.data(); }
+    bool empty() const { return mWidth <= 0 || mHeight <= 0; }
+    // Re-pools the tiles touching [x0, x1) in rows [y0, y1) after their values changed.
+    void refresh(int x0, int y0, int x1, int y1);
+    double total() const { return mTotal; }
+
+private:
+    int mWidth = 0, mHeight = 0, mTiles = 0;
+    std::vector<double> mValues, mTileSums, mRowSums;
+    double mTotal = 0;
+};
+
+// --- SSIM ---------------------------------------------------------------------------------
+
+// Processing block of the separable filter: at most kSsimBlockRows map rows by
+// kSsimBlockColumns map columns, so the horizontal pass stays in L2 whatever the image width.
+constexpr int kSsimBlockRows = 64;
+constexpr int kSsimBlockColumns = 256;
+// Windows are compared with the reference in cells of kSsimBlockRows x kSsimCellColumns.
+constexpr int kSsimCellColumns = 64;
+constexpr int kSsimMaxWindow = 63;
+
+// Everything the per-window computation needs; constants are in scaled gray units.
+struct SsimKernel {
+    int window = 11;  // effective (odd) window side
+    int radius = 5;
+    std::array<double, kSsimMaxWindow> weights{};  // normalised Gaussian, symmetric
+    double c1 = 0, c2 = 0;                          // (K1 L scale)^2, (K2 L scale)^2
+    int mapWidth = 0, mapHeight = 0;
+};
+SsimKernel makeSsimKernel(const MetricParameters& parameters, int width, int height, const GrayScale& gray);
+
+// Working memory of the SSIM blocks, allocated once per kernel.
+struct SsimScratch {
+    int columns = 0;                      // widest block: min(kSsimBlockColumns, map width)
+    std::vector<double> inX, inXX, inXY;  // one image row segment
+    std::vector<double> hX, hXX, hXY;     // horizontal pass, block rows + window - 1 rows
+    std::vector<double> vX, vXX, vXY;     // vertical pass, one map row segment
+    void reserve(const SsimKernel& kernel);
+};
+
+// Reference statistics of map windows [mx0, mx1) x [my0, my1): mean and population variance
+// (E[y^2] - mean^2) of gray `grayY` (image rows `grayStride` values apart). `mean` and
+// `variance` point at the element for (mx0, my0); rows are `statStride` apart.
+void ssimReferenceStatistics(const std::int32_t* grayY, std::size_t grayStride, const SsimKernel& kernel, int mx0,
+                             int my0, int mx1, int my1, SsimScratch& scratch, double* mean, double* variance,
+                             std::size_t statStride);
+
+// SSIM of windows [mx0, mx1) x [my0, my1) of gray `grayX` against `grayY`, whose statistics
+// `mean`/`variance` (as above, pointing at (mx0, my0)) were computed by
+// ssimReferenceStatistics. `map` points at (mx0, my0), rows `mapStride` apart.
+void ssimWindows(const std::int32_t* grayX, const std::int32_t* grayY, std::size_t grayStride,
+                 const SsimKernel& kernel, int mx0, int my0, int mx1, int my1, const double* mean,
+                 const double* variance, std::size_t statStride, SsimScratch& scratch, double* map,
+                 std::size_t mapStride);
+
+// --- Entropies ----------------------------------------------------------------------------
+
+// Shannon entropy in bits of `bins` counts summing to `total` (0 for an empty histogram),
+// clamped to [0, log2 bins].
+double histogramEntropy(const std::uint64_t* counts, int bins, std::uint64_t total);
+
+// Sobel bins of interior pixels: magnitude sqrt(gx^2 + gy^2) of the 3x3 Sobel operator on
+// scaled gray, mapped linearly from [0, 255 sqrt(20) scale] onto `bins` bins (the top value
+// goes into the last bin).
+struct SobelBinning {
+    int bins = 256;
+    double scale = 0;  // bins / (255 sqrt(20) grayScale)
+};
+SobelBinning makeSobelBinning(int bins, const GrayScale& gray);
+// Bins of `count` consecutive interior pixels starting at `center` (gray rows `stride` apart).
+void sobelBinsRow(const std::int32_t* center, std::ptrdiff_t stride, int count, const SobelBinning& binning,
+                  std::uint16_t* out);
+
+// Histogram changes accumulated in interleaved lanes, then merged: consecutive pixels hit
+// different copies, which breaks the store-to-load chain that runs of equal values (a flat
+// background) would otherwise form on one counter. Integer counts: the order is irrelevant.
+class LaneHistogram {
+public:
+    void resize(int bins);
+    void add(int pixel, int bin) { ++mLanes[std::size_t((pixel & (mLaneCount - 1)) * mBins + bin)]; }
+    void remove(int pixel, int bin) { --mLanes[std::size_t((pixel & (mLaneCount - 1)) * mBins + bin)]; }
+    // histogram[b] += sum of the lanes' changes to b; the lanes return to zero.
+    void mergeInto(std::uint64_t* histogram);
+
+private:
+    int mBins = 0, mLaneCount = 1;  // lane count: a power of two
+    std::vector<std::int64_t> mLanes;
+};
+
+// GAPSO15 eq. (3)-(4) term -g log2 g of the Roberts cross at `p` (needs p's right and lower
+// neighbours), g in gray levels.
+inline double robertsTerm(const std::int32_t* p, std::ptrdiff_t stride, double inverseScale) {
+    const double a = double(p[0] - p[stride + 1]);
+    const double b = double(p[stride] - p[1]);
+    const double g = std::sqrt(a * a + b * b) * inverseScale;
+    return g > 0 ? -g * std::log2(g) : 0.0;
+}
+
+// GAPSO15 eq. (5)-(6) with p = x / S: H = log2 S - (sum x log2 x) / S. The per-pixel term
+// x log2 x uses scaled gray; the entropy is scale-free.
+inline double intensityTerm(std::int32_t scaledGray) {
+    return scaledGray > 0 ? double(scaledGray) * std::log2(double(scaledGray)) : 0.0;
+}
+double intensityShareEntropy(std::int64_t intensitySum, double termSum, std::uint64_t pixelCount);
+
+// --- Precision / recall -------------------------------------------------------------------
+
+enum PixelClass : std::uint8_t { kTruePositive = 1, kFalsePositive = 2, kFalseNegative = 4 };
+
+struct CoverageRule {
+    int channels = 4;
+    std::array<std::uint8_t, 4> background{};  // gray images: background[0] = its gray
+    int tolerance = 8;
+};
+CoverageRule makeCoverageRule(const MetricParameters& parameters, int channels, const GrayScale& gray);
+
+// PixelClass bits of `count` pixels (interleaved, rule.channels bytes each).
+void classifyRow(const std::uint8_t* candidate, const std::uint8_t* reference, int count, const CoverageRule& rule,
+                 std::uint8_t* out);
+
+}  // namespace lodopt::metrics::detail

@@ -1,0 +1,23 @@
+// Feasibility repair: make an over-budget combination fit by coarsening levels.
+//
+// Rule (docs/optimizer.md, "Repair"): while predictMs > budgetMs, lower by one step (coarser,
+// level + 1) the variable whose step loses least fitness per millisecond saved:
+//   - with a surrogate table, the loss of a step is surrogateLoss[i][l+1] - surrogateLoss[i][l]
+//     and the variable with the smallest loss / savedMs is lowered;
+//   - without one, every step is assumed to lose the same fitness, so loss per millisecond is
+//     proportional to 1 / savedMs and the variable whose step saves the most is lowered.
+// savedMs = -Cost::deltaMs. Steps that save nothing are taken only when no step saves time (a
+// non-monotone cost model), the one with the largest savedMs first. Ties go to the lower
+// variable index. Levels only ever increase, so repair ends after at most sum(levelCounts - 1)
+// steps, and it ends feasible because validateProblem() checked that all-coarsest fits.
+#pragma once
+
+#include "optimizer/problem.hpp"
+
+namespace lodopt::optimizer {
+
+// Repairs `combination` in place and returns its predicted milliseconds (<= budgetMs).
+// A feasible combination is left unchanged. `combination` must be valid and `problem` validated.
+double repairToBudget(const Problem& problem, Combination& combination);
+
+}  // namespace lodopt::optimizer

@@ -1,0 +1,107 @@
+// The lodopt executable: exit codes, JSON output, files written.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct CommandResult {
+    int exitCode = -1;
+    std::string output;  // stdout only
+};
+
+CommandResult runLodopt(const std::string& arguments) {
+    const std::string command = std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null";
+    CommandResult result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return result;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+    int status = pclose(pipe);
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+}
+
+std::filesystem::path tempDir(const std::string& name) {
+    auto dir = std::filesystem::temp_directory_path() / ("lodopt-cli-" + name + "-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+}  // namespace
+
+TEST(CliScene, InfoJsonListsObjectsLevelsAndViews) {
+    CommandResult result = runLodopt("scene info harbor --json");
+    ASSERT_EQ(result.exitCode, 0);
+    nlohmann::json info = nlohmann::json::parse(result.output);
+    ASSERT_EQ(info["objects"].size(), 3u);
+    EXPECT_EQ(info["objects"][1]["name"], "ship");
+    EXPECT_EQ(info["objects"][1]["levels"].size(), 5u);
+    EXPECT_GT(info["objects"][1]["levels"][0]["triangles"].get<int>(), 0);
+    EXPECT_GE(info["views"].size(), 3u);
+}
+
+TEST(CliScene, UnknownSceneIsBadInput) {
+    EXPECT_EQ(runLodopt("scene info atlantis").exitCode, 2);
+    EXPECT_EQ(runLodopt("scene info /nonexistent/model.gltf").exitCode, 2);
+    EXPECT_EQ(runLodopt("scene export harbor /tmp/x.obj").exitCode, 2);
+}
+
+TEST(CliScene, ExportThenInfoGivesTheSameStatistics) {
+    auto dir = tempDir("export");
+    const std::string path = (dir / "harbor.glb").string();
+    ASSERT_EQ(runLodopt("scene export harbor " + path).exitCode, 0);
+    ASSERT_TRUE(std::filesystem::exists(path));
+    nlohmann::json original = nlohmann::json::parse(runLodopt("scene info harbor --json").output);
+    nlohmann::json reloaded = nlohmann::json::parse(runLodopt("scene info " + path + " --json").output);
+    ASSERT_EQ(original["objects"].size(), reloaded["objects"].size());
+    for (std::size_t o = 0; o < original["objects"].size(); ++o) {
+        const auto& a = original["objects"][o];
+        const auto& b = reloaded["objects"][o];
+        EXPECT_EQ(a["name"], b["name"]);
+        ASSERT_EQ(a["levels"].size(), b["levels"].size()) << a["name"];
+        for (std::size_t l = 0; l < a["levels"].size(); ++l) {
+            for (const char* key : {"vertices", "triangles", "texture_bytes", "draw_calls"}) {
+                EXPECT_EQ(a["levels"][l][key], b["levels"][l][key]) << a["name"] << " level " << l << " " << key;
+            }
+        }
+    }
+    EXPECT_EQ(original["views"].size(), reloaded["views"].size());
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliRender, WritesPngAndReportsTime) {
+    auto dir = tempDir("render");
+    const std::string out = (dir / "coarse.png").string();
+    CommandResult result =
+        runLodopt("render --scene harbor --view ship_close --levels 5,4,4 --size 128x96 --time --repeats 2 --out " +
+                  out + " --depth-out " + (dir / "depth.exr").string() + " --json");
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    nlohmann::json json = nlohmann::json::parse(result.output);
+    EXPECT_GT(json["render_ms"].get<double>(), 0.0);
+    EXPECT_EQ(json["width"], 128);
+    EXPECT_EQ(json["height"], 96);
+    EXPECT_EQ(json["levels"], nlohmann::json({5, 4, 4}));
+    EXPECT_TRUE(std::filesystem::exists(out));
+    EXPECT_TRUE(std::filesystem::exists(dir / "depth.exr"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CliRender, BadArgumentsExitWithTwoAndWriteNothing) {
+    auto dir = tempDir("render-bad");
+    const std::string out = (dir / "x.png").string();
+    EXPECT_EQ(runLodopt("render --levels 0,9,0 --out " + out).exitCode, 2);
+    EXPECT_EQ(runLodopt("render --levels 0,0 --out " + out).exitCode, 2);
+    EXPECT_EQ(runLodopt("render --levels a,b,c --out " + out).exitCode, 2);
+    EXPECT_EQ(runLodopt("render --view nowhere --out " + out).exitCode, 2);
+    EXPECT_EQ(runLodopt("render --size 0x10 --out " + out).exitCode, 2);
+    EXPECT_EQ(runLodopt("render --no-such-flag").exitCode, 2);
+    EXPECT_EQ(runLodopt("").exitCode, 2);
+    EXPECT_FALSE(std::filesystem::exists(out));
+    std::filesystem::remove_all(dir);
+}

@@ -1,0 +1,146 @@
+// lodopt metrics: exit codes and JSON output on tiny hand-written PPM/PGM images (OpenImageIO
+// reads binary PNM, so the test needs no image library).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct LodoptRun {
+    int exitCode = -1;
+    std::string output;  // stdout only
+};
+
+LodoptRun lodopt(const std::string& arguments) {
+    const std::string command = std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null";
+    LodoptRun result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return result;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+}
+
+class MetricsCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        mDir = std::filesystem::temp_directory_path() / ("lodopt-metrics-cli-" + std::to_string(::getpid()));
+        std::filesystem::create_directories(mDir);
+    }
+    void TearDown() override { std::filesystem::remove_all(mDir); }
+
+    // Binary PPM (channels 3) or PGM (channels 1); pixel(x, y, c) gives the bytes.
+    template <class Pixel>
+    std::string write(const std::string& name, int width, int height, int channels, Pixel pixel) {
+        const std::filesystem::path path = mDir / name;
+        std::ofstream file(path, std::ios::binary);
+        file << (channels == 3 ? "P6" : "P5") << "\n" << width << " " << height << "\n255\n";
+        for (int y = 0; y < height; ++y) {
+            for (int x = 0; x < width; ++x) {
+                for (int c = 0; c < channels; ++c) file.put(char(pixel(x, y, c)));
+            }
+        }
+        return path.string();
+    }
+
+    // Sky (158, 194, 230) with a square "object" whose color depends on `shade`.
+    std::string scene(const std::string& name, int size, int shade) {
+        return write(name, size, size, 3, [=](int x, int y, int c) {
+            const bool object = x >= size / 4 && x < size / 2 && y >= size / 4 && y < (3 * size) / 4;
+            const int sky[3] = {158, 194, 230};
+            return object ? (40 + 37 * c + shade * ((x + y) % 5)) % 256 : sky[c];
+        });
+    }
+
+    std::filesystem::path mDir;
+};
+
+TEST_F(MetricsCli, JsonReportsEveryComponent) {
+    const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
+    const LodoptRun run = lodopt("metrics " + a + " " + b + " --json");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const nlohmann::json result = nlohmann::json::parse(run.output);
+    for (const char* key : {"ssim", "boundary_entropy", "information_entropy"}) {
+        ASSERT_TRUE(result.contains(key)) << key;
+        EXPECT_TRUE(result[key]["computed"].get<bool>());
+        for (const char* field : {"candidate", "reference", "fidelity"}) {
+            EXPECT_TRUE(result[key][field].is_number()) << key << "." << field;
+        }
+        EXPECT_GE(result[key]["fidelity"].get<double>(), 0.0);
+        EXPECT_LE(result[key]["fidelity"].get<double>(), 1.0);
+    }
+    EXPECT_LT(result["ssim"]["candidate"].get<double>(), 1.0);
+    EXPECT_EQ(result["ssim"]["reference"].get<double>(), 1.0);
+    for (const char* key : {"precision", "recall", "fitness"}) {
+        ASSERT_TRUE(result[key].is_number()) << key;
+        EXPECT_GE(result[key].get<double>(), 0.0);
+        EXPECT_LE(result[key].get<double>(), 1.0);
+    }
+    EXPECT_LT(result["fitness"].get<double>(), 1.0);
+    EXPECT_EQ(result["width"], 32);
+}
+
+TEST_F(MetricsCli, IdenticalImagesScoreOne) {
+    const std::string a = scene("a.ppm", 24, 3);
+    const nlohmann::json result = nlohmann::json::parse(lodopt("metrics " + a + " " + a + " --json").output);
+    EXPECT_EQ(result["fitness"].get<double>(), 1.0);
+    EXPECT_EQ(result["ssim"]["candidate"].get<double>(), 1.0);
+    EXPECT_EQ(result["precision"].get<double>(), 1.0);
+}
+
+TEST_F(MetricsCli, WeightsSelectAndSkipComponents) {
+    const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
+    const LodoptRun run = lodopt("metrics " + a + " " + b + " --weights 1,0,0 --json");
+    ASSERT_EQ(run.exitCode, 0);
+    const nlohmann::json result = nlohmann::json::parse(run.output);
+    EXPECT_FALSE(result["boundary_entropy"]["computed"].get<bool>());
+    EXPECT_TRUE(result["boundary_entropy"]["candidate"].is_null());
+    EXPECT_EQ(result["fitness"].get<double>(), result["ssim"]["fidelity"].get<double>());
+}
+
+TEST_F(MetricsCli, GrayImagesAreUsedAsTheyAre) {
+    const std::string a = write("a.pgm", 20, 20, 1, [](int x, int y, int) { return (x * 13 + y * 7) % 256; });
+    const std::string b = write("b.pgm", 20, 20, 1, [](int x, int y, int) { return (x * 13 + y * 5) % 256; });
+    const LodoptRun run = lodopt("metrics " + a + " " + b + " --json");
+    ASSERT_EQ(run.exitCode, 0);
+    const nlohmann::json result = nlohmann::json::parse(run.output);
+    EXPECT_EQ(result["channels"], 1);
+    EXPECT_GT(result["information_entropy"]["candidate"].get<double>(), 0.0);
+}
+
+TEST_F(MetricsCli, TextOutputListsTheComponents) {
+    const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
+    const LodoptRun run = lodopt("metrics " + a + " " + b);
+    ASSERT_EQ(run.exitCode, 0);
+    for (const char* word : {"ssim", "boundary_entropy", "information_entropy", "precision", "recall", "fitness"}) {
+        EXPECT_NE(run.output.find(word), std::string::npos) << word;
+    }
+}
+
+TEST_F(MetricsCli, BadInputIsExitCode2) {
+    const std::string a = scene("a.ppm", 32, 3), small = scene("small.ppm", 31, 3);
+    const std::string gray = write("g.pgm", 32, 32, 1, [](int, int, int) { return 9; });
+    const std::string garbage = (mDir / "garbage.png").string();
+    std::ofstream(garbage) << "not a png";
+    EXPECT_EQ(lodopt("metrics " + a + " " + small).exitCode, 2);              // size mismatch
+    EXPECT_EQ(lodopt("metrics " + a + " " + gray).exitCode, 2);               // gray vs color
+    EXPECT_EQ(lodopt("metrics " + a + " " + garbage).exitCode, 2);            // unreadable
+    EXPECT_EQ(lodopt("metrics " + a + " " + (mDir / "none.png").string()).exitCode, 2);  // missing
+    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --weights 1,1").exitCode, 2);
+    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --weights 0,0,0").exitCode, 2);
+    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --weights 1,-1,1").exitCode, 2);
+    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --weights 1,nan,1").exitCode, 2);
+    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --gray hsv").exitCode, 2);
+    EXPECT_EQ(lodopt("metrics " + a).exitCode, 2);
+}
+
+}  // namespace

@@ -1,0 +1,145 @@
+// lodopt calibrate / estimate: a tiny real calibration (seconds), predictions from its
+// profile and from the shipped one, and bad input mapped to exit code 2.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "timemodel/profile.hpp"
+
+namespace {
+
+struct CommandResult {
+    int exitCode = -1;
+    std::string output;  // stdout only
+};
+
+CommandResult run(const std::string& arguments) {
+    const std::string command = std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null";
+    CommandResult result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return result;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+}
+
+// One tiny calibration shared by the tests of this file (timing it once keeps the suite fast).
+class TimeModelCli : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        sDir = std::filesystem::temp_directory_path() / ("lodopt-cli-timemodel-" + std::to_string(::getpid()));
+        std::filesystem::remove_all(sDir);
+        std::filesystem::create_directories(sDir);
+        sProfile = (sDir / "device.json").string();
+        sCalibration = run("calibrate --scene harbor --samples 24 --jitter 1 --rounds 1 --repeats 1 --warmup 1 "
+                           "--size 96x72 --seed 3 --out " +
+                           sProfile + " --json");
+    }
+    static void TearDownTestSuite() { std::filesystem::remove_all(sDir); }
+
+    static nlohmann::json estimate(const std::string& arguments, int expectedExit = 0) {
+        CommandResult result = run("estimate " + arguments + " --json");
+        EXPECT_EQ(result.exitCode, expectedExit) << arguments;
+        if (result.exitCode != 0) return {};
+        return nlohmann::json::parse(result.output);
+    }
+
+    static std::filesystem::path sDir;
+    static std::string sProfile;
+    static CommandResult sCalibration;
+};
+
+std::filesystem::path TimeModelCli::sDir;
+std::string TimeModelCli::sProfile;
+CommandResult TimeModelCli::sCalibration;
+
+}  // namespace
+
+TEST_F(TimeModelCli, CalibrateFitsEveryModelAndWritesAProfile) {
+    ASSERT_EQ(sCalibration.exitCode, 0) << sCalibration.output;
+    const nlohmann::json report = nlohmann::json::parse(sCalibration.output);
+    EXPECT_EQ(report["samples"], 24);
+    EXPECT_GT(report["held_out_samples"].get<int>(), 0);
+    EXPECT_EQ(report["fit_samples"].get<int>() + report["held_out_samples"].get<int>(), 24);
+    EXPECT_EQ(report["held_out_viewpoints"], 4);  // one of each named view's two viewpoints
+    ASSERT_EQ(report["models"].size(), 3u);
+    EXPECT_EQ(report["models"][0]["name"], "linear");
+    EXPECT_TRUE(report["models"][0]["fitted"].get<bool>());
+    EXPECT_GT(report["models"][0]["held_out_errors"]["count"].get<int>(), 0);
+    ASSERT_TRUE(std::filesystem::exists(sProfile));
+    const lodopt::timemodel::DeviceProfile profile = lodopt::timemodel::loadProfile(sProfile);
+    EXPECT_EQ(profile.scene, "harbor");
+    EXPECT_EQ(profile.width, 96);
+    EXPECT_EQ(profile.height, 72);
+    EXPECT_EQ(profile.samples.size(), 24u);
+    EXPECT_NE(profile.glRenderer.find("llvmpipe"), std::string::npos) << profile.glRenderer;
+    EXPECT_FALSE(profile.machine.cpuModel.empty());
+    for (const auto& s : profile.samples) EXPECT_GT(s.sample.measuredMs, 0.0);
+}
+
+TEST_F(TimeModelCli, EstimateFromTheProfilePredictsEveryModel) {
+    ASSERT_EQ(sCalibration.exitCode, 0);
+    const nlohmann::json fine = estimate("--profile " + sProfile + " --scene harbor --view 1 --levels 0,0,0");
+    const nlohmann::json coarse = estimate("--profile " + sProfile + " --scene harbor --view 1 --levels 5,4,4");
+    ASSERT_FALSE(fine.is_null());
+    ASSERT_FALSE(coarse.is_null());
+    EXPECT_EQ(fine["model"], "linear");
+    EXPECT_EQ(fine["width"], 96);  // the profile's size by default
+    EXPECT_TRUE(fine["warnings"].empty()) << fine["warnings"].dump();
+    EXPECT_GT(fine["predicted_ms"].get<double>(), 0.0);
+    EXPECT_GE(fine["predicted_ms"].get<double>(), coarse["predicted_ms"].get<double>());
+    EXPECT_GT(fine["features"]["triangles"].get<double>(), coarse["features"]["triangles"].get<double>());
+    for (const char* model : {"dong", "wimmer"}) {
+        const nlohmann::json other =
+            estimate("--profile " + sProfile + " --scene harbor --view 1 --levels 0,2,1 --model " + model);
+        ASSERT_FALSE(other.is_null()) << model;
+        EXPECT_EQ(other["model"], model);
+        EXPECT_TRUE(std::isfinite(other["predicted_ms"].get<double>()));
+    }
+}
+
+TEST_F(TimeModelCli, EstimateWarnsForAnotherRenderSize) {
+    ASSERT_EQ(sCalibration.exitCode, 0);
+    const nlohmann::json result = estimate("--profile " + sProfile + " --size 512x512 --levels 0,2,1");
+    ASSERT_FALSE(result.is_null());
+    ASSERT_EQ(result["warnings"].size(), 1u);
+    EXPECT_NE(result["warnings"][0].get<std::string>().find("96x72"), std::string::npos);
+}
+
+TEST_F(TimeModelCli, BadInputExitsWithTwo) {
+    const std::string out = (sDir / "never.json").string();
+    EXPECT_EQ(run("calibrate --samples 1 --out " + out).exitCode, 2);
+    EXPECT_EQ(run("calibrate --views nowhere --samples 8 --out " + out).exitCode, 2);
+    EXPECT_EQ(run("calibrate --rounds 0 --out " + out).exitCode, 2);
+    EXPECT_FALSE(std::filesystem::exists(out));
+    estimate("--profile " + (sDir / "missing.json").string(), 2);
+    const std::string corrupt = (sDir / "corrupt.json").string();
+    std::ofstream(corrupt) << "{\"format\": \"lodopt-device-profile\", \"version\": 1}";
+    estimate("--profile " + corrupt, 2);
+    if (sCalibration.exitCode == 0) {
+        estimate("--profile " + sProfile + " --model funkhouser", 2);
+        estimate("--profile " + sProfile + " --levels 0,9,0", 2);
+        estimate("--profile " + sProfile + " --view nowhere", 2);
+    }
+}
+
+TEST_F(TimeModelCli, EstimateWithoutAProfileUsesTheShippedOne) {
+    if (lodopt::timemodel::shippedProfileScenes().empty()) {
+        EXPECT_EQ(run("estimate --scene harbor").exitCode, 2);
+        GTEST_SKIP() << "this build ships no profile";
+    }
+    const nlohmann::json result = estimate("--scene harbor --view 0 --levels 0,2,1 --no-renderer-check");
+    ASSERT_FALSE(result.is_null());
+    EXPECT_EQ(result["profile"], "shipped:harbor");
+    EXPECT_GT(result["predicted_ms"].get<double>(), 0.0);
+}

@@ -1,0 +1,193 @@
+// Evaluation: skipping, level merging, fast path == full path, thread-count independence.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "evaluation/evaluation.hpp"
+#include "evaluation/time_cost.hpp"
+#include "scenes/builtin.hpp"
+#include "scenes/mesh_builder.hpp"
+
+using namespace lodopt;
+
+namespace {
+
+scenes::Level boxLevel(glm::vec3 halfExtents, int material) {
+    scenes::MeshBuilder builder(material);
+    builder.addBox(glm::vec3(0.0f), halfExtents);
+    scenes::Level level;
+    level.meshes.push_back(builder.finish());
+    return level;
+}
+
+scenes::Object boxObject(const std::string& name, glm::vec3 position, std::vector<glm::vec3> levels, int material) {
+    scenes::Object object;
+    object.name = name;
+    object.transform = glm::translate(glm::mat4(1.0f), position);
+    for (glm::vec3 halfExtents : levels) object.levels.push_back(boxLevel(halfExtents, material));
+    return object;
+}
+
+// Camera at z = 10 looking at the origin.
+//   visible:  a box at the origin whose levels 0 and 1 are identical (merged), level 2 smaller
+//   behind:   a box behind the camera (outside the frustum)
+//   speck:    a 1 mm box 500 units away (below one pixel)
+//   wall:     a wide wall at z = -5 … and `hidden`, a box behind the wall at z = -10
+scenes::Scene skipScene() {
+    scenes::Scene scene;
+    scene.name = "skips";
+    scene.materials.push_back({"red", {0.8f, 0.2f, 0.2f, 1.0f}, -1});
+    scene.materials.push_back({"grey", {0.5f, 0.5f, 0.5f, 1.0f}, -1});
+    scene.objects.push_back(boxObject("visible", {0, 0, 0}, {{1, 1, 1}, {1, 1, 1}, {0.5f, 0.5f, 0.5f}}, 0));
+    scene.objects.push_back(boxObject("behind", {0, 0, 30}, {{1, 1, 1}, {0.5f, 0.5f, 0.5f}}, 0));
+    scene.objects.push_back(boxObject("speck", {0, 0, -490}, {{0.001f, 0.001f, 0.001f}, {0.0005f, 0.0005f, 0.0005f}}, 0));
+    scene.objects.push_back(boxObject("wall", {0, 0, -5}, {{40, 40, 0.1f}, {40, 40, 0.1f}}, 1));
+    scene.objects.push_back(boxObject("hidden", {3, 0, -10}, {{1, 1, 1}, {0.5f, 0.5f, 0.5f}}, 0));
+    scenes::Camera camera;
+    camera.name = "front";
+    camera.position = {0, 0, 10};
+    camera.target = {0, 0, 0};
+    camera.nearPlane = 0.1f;
+    camera.farPlane = 1000.0f;
+    scene.views.push_back(camera);
+    scenes::updateStatistics(scene);
+    return scene;
+}
+
+renderer::RenderSettings settings(int size) {
+    renderer::RenderSettings s;
+    s.width = s.height = size;
+    return s;
+}
+
+optimizer::Combination randomCombination(const std::vector<int>& counts, std::mt19937& random) {
+    optimizer::Combination combination;
+    for (int count : counts) combination.push_back(int(random() % count));
+    return combination;
+}
+
+}  // namespace
+
+TEST(ViewSetup, SkipsWhatTheViewDoesNotNeedAndSaysWhy) {
+    scenes::Scene scene = skipScene();
+    renderer::Renderer renderer(scene, settings(128));
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    const auto& objects = setup.objects();
+    EXPECT_EQ(objects[0].skip, evaluation::SkipReason::None);
+    EXPECT_EQ(objects[1].skip, evaluation::SkipReason::OutsideFrustum);
+    EXPECT_EQ(objects[2].skip, evaluation::SkipReason::BelowOnePixel);
+    EXPECT_EQ(objects[3].skip, evaluation::SkipReason::None);
+    EXPECT_EQ(objects[4].skip, evaluation::SkipReason::Hidden);
+    // visible: levels 0 and 1 render identically → one option (level 1), plus level 2.
+    EXPECT_EQ(objects[0].optionLevels, (std::vector<int>{1, 2}));
+    EXPECT_EQ(objects[0].mergedLevels, 1);
+    // The wall's two levels are identical too: a single option.
+    EXPECT_EQ(objects[3].optionLevels, (std::vector<int>{1}));
+    EXPECT_EQ(setup.variableObjects(), (std::vector<int>{0, 3}));
+    EXPECT_EQ(setup.levelCounts(), (std::vector<int>{2, 1}));
+    const evaluation::SkipSummary& skip = setup.skipSummary();
+    EXPECT_EQ(skip.searchedObjects, 2);
+    EXPECT_EQ(skip.outsideFrustum, 1);
+    EXPECT_EQ(skip.belowOnePixel, 1);
+    EXPECT_EQ(skip.hidden, 1);
+    EXPECT_EQ(skip.mergedLevels, 2);
+    // Mapping both ways; skipped objects sit at their coarsest level.
+    EXPECT_EQ(setup.toScene({1, 0}), (scenes::Combination{2, 1, 1, 1, 1}));
+    EXPECT_EQ(setup.fromScene({0, 0, 0, 0, 0}), (optimizer::Combination{0, 0}));
+    EXPECT_EQ(setup.fromScene({2, 0, 0, 0, 0}), (optimizer::Combination{1, 0}));
+}
+
+TEST(ViewSetup, ReferenceOptionsReproduceTheReferenceImage) {
+    scenes::Scene scene = skipScene();
+    renderer::Renderer renderer(scene, settings(128));
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    metrics::MetricParameters parameters;
+    evaluation::LayerEvaluator fast(setup, parameters);
+    optimizer::Score score = fast.evaluate({0, 0});
+    EXPECT_DOUBLE_EQ(score.fitness, 1.0);
+    EXPECT_EQ(fast.imageOf({0, 0}).rgba, setup.reference().rgba);
+    EXPECT_LT(fast.evaluate({1, 0}).fitness, 1.0);
+}
+
+TEST(Evaluators, FastAndFullPathsAgreeOnEveryHarborView) {
+    scenes::Scene scene = scenes::makeHarborScene();
+    renderer::Renderer renderer(scene, settings(256));
+    metrics::MetricParameters parameters;
+    std::mt19937 random(11);
+    for (const scenes::Camera& camera : scene.views) {
+        evaluation::ViewSetup setup(scene, camera, renderer);
+        evaluation::LayerEvaluator fast(setup, parameters);
+        evaluation::FullRenderEvaluator full(setup, renderer, parameters);
+        const std::vector<int> counts = setup.levelCounts();
+        ASSERT_FALSE(counts.empty()) << camera.name;
+        double worst = 0.0;
+        for (int trial = 0; trial < 12; ++trial) {
+            optimizer::Combination combination = randomCombination(counts, random);
+            const double a = fast.evaluate(combination).fitness;
+            const double b = full.evaluate(combination).fitness;
+            worst = std::max(worst, std::abs(a - b));
+            EXPECT_NEAR(a, b, 1e-3) << camera.name << " " << optimizer::formatCombination(combination);
+        }
+        std::cout << camera.name << ": max |fast - full| = " << worst << "\n";
+    }
+}
+
+TEST(Evaluators, BatchScoresDoNotDependOnThreadCountOrOrder) {
+    scenes::Scene scene = scenes::makeHarborScene();
+    renderer::Renderer renderer(scene, settings(192));
+    evaluation::ViewSetup setup(scene, scene.views[1], renderer);
+    metrics::MetricParameters parameters;
+    std::mt19937 random(5);
+    std::vector<optimizer::Combination> batch;
+    for (int k = 0; k < 24; ++k) batch.push_back(randomCombination(setup.levelCounts(), random));
+    std::vector<optimizer::Score> serial(batch.size()), parallel(batch.size()), reversed(batch.size());
+    evaluation::LayerEvaluator one(setup, parameters, 1);
+    evaluation::LayerEvaluator three(setup, parameters, 3);
+    one.evaluateBatch(batch, serial);
+    three.evaluateBatch(batch, parallel);
+    std::vector<optimizer::Combination> backwards(batch.rbegin(), batch.rend());
+    one.evaluateBatch(backwards, reversed);
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+        EXPECT_EQ(serial[k].fitness, parallel[k].fitness) << k;
+        EXPECT_EQ(serial[k].fitness, reversed[batch.size() - 1 - k].fitness) << k;
+        for (int c = 0; c < serial[k].componentCount; ++c) EXPECT_EQ(serial[k].components[c], parallel[k].components[c]);
+    }
+}
+
+TEST(Hints, DistancesAndCoverageArePlausible) {
+    scenes::Scene scene = scenes::makeHarborScene();
+    renderer::Renderer renderer(scene, settings(128));
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    std::vector<optimizer::VariableHints> hints = evaluation::computeHints(setup);
+    ASSERT_EQ(hints.size(), setup.variableObjects().size());
+    for (std::size_t v = 0; v < hints.size(); ++v) {
+        EXPECT_GT(hints[v].distance, 0.0);
+        EXPECT_GT(hints[v].screenCoverage, 0.0);
+        EXPECT_GT(hints[v].projectedArea, 0.0);
+        ASSERT_EQ(hints[v].levelPixelError.size(), std::size_t(setup.levelCounts()[v]));
+        for (std::size_t l = 1; l < hints[v].levelPixelError.size(); ++l) {
+            EXPECT_GE(hints[v].levelPixelError[l], hints[v].levelPixelError[l - 1]);
+        }
+    }
+}
+
+TEST(TimeModelCost, PredictsThroughTheFeatureTable) {
+    scenes::Scene scene = scenes::makeHarborScene();
+    renderer::Renderer renderer(scene, settings(128));
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    // 1 µs per triangle: predictions are the drawn triangle counts in ms / 1000.
+    evaluation::TimeModelCost cost(setup, [](const timemodel::FrameFeatures& f) {
+        return f[timemodel::Feature::kTriangles] * 1e-3;
+    });
+    const optimizer::Combination fine(setup.levelCounts().size(), 0);
+    const scenes::Combination levels = setup.toScene(fine);
+    double triangles = 0;
+    for (std::size_t o = 0; o < levels.size(); ++o) triangles += double(scene.objects[o].levels[levels[o]].stats.triangles);
+    EXPECT_NEAR(cost.predictMs(fine), triangles * 1e-3, 1e-9);
+    optimizer::Combination coarser = fine;
+    coarser[0] = setup.levelCounts()[0] - 1;
+    EXPECT_NEAR(cost.deltaMs(fine, 0, coarser[0]), cost.predictMs(coarser) - cost.predictMs(fine), 1e-9);
+    EXPECT_LT(cost.deltaMs(fine, 0, coarser[0]), 0.0);
+}

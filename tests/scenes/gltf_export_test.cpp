@@ -1,0 +1,227 @@
+// exportGltf round trips: load(export(scene)) gives the same objects, levels, statistics,
+// materials, textures, views, camera paths and name, for .gltf and .glb.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "gltf_test_files.hpp"
+#include "scenes/gltf_io.hpp"
+#include "scenes/mesh_builder.hpp"
+
+namespace lodopt::scenes {
+namespace {
+
+using testing::TempDir;
+
+GltfLoadOptions noGeneration() {
+    GltfLoadOptions options;
+    options.generateLods = false;
+    return options;
+}
+
+void expectNearVec(glm::vec3 a, glm::vec3 b, float tolerance) {
+    EXPECT_NEAR(a.x, b.x, tolerance);
+    EXPECT_NEAR(a.y, b.y, tolerance);
+    EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+void expectSameCamera(const Camera& a, const Camera& b) {
+    EXPECT_EQ(a.name, b.name);
+    expectNearVec(a.position, b.position, 1e-5f);
+    expectNearVec(a.target, b.target, 1e-5f);
+    EXPECT_NEAR(a.fovYDegrees, b.fovYDegrees, 1e-4f);
+    EXPECT_FLOAT_EQ(a.nearPlane, b.nearPlane);
+    EXPECT_FLOAT_EQ(a.farPlane, b.farPlane);
+    // `up` may come back orthogonalised: the view it gives must not change.
+    const glm::mat4 va = viewMatrix(a), vb = viewMatrix(b);
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) EXPECT_NEAR(va[c][r], vb[c][r], 1e-4f) << a.name;
+    }
+}
+
+void expectSameScene(const Scene& a, const Scene& b) {
+    EXPECT_EQ(a.name, b.name);
+    ASSERT_EQ(a.objects.size(), b.objects.size());
+    for (std::size_t o = 0; o < a.objects.size(); ++o) {
+        const Object& x = a.objects[o];
+        const Object& y = b.objects[o];
+        SCOPED_TRACE(x.name);
+        EXPECT_EQ(x.name, y.name);
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) EXPECT_FLOAT_EQ(x.transform[c][r], y.transform[c][r]);
+        }
+        ASSERT_EQ(x.levels.size(), y.levels.size());
+        for (std::size_t k = 0; k < x.levels.size(); ++k) {
+            const LevelStats& s = x.levels[k].stats;
+            const LevelStats& t = y.levels[k].stats;
+            EXPECT_EQ(s.vertices, t.vertices) << "level " << k;
+            EXPECT_EQ(s.triangles, t.triangles) << "level " << k;
+            EXPECT_EQ(s.textureBytes, t.textureBytes) << "level " << k;
+            EXPECT_EQ(s.drawCalls, t.drawCalls) << "level " << k;
+            expectNearVec(s.bounds.min, t.bounds.min, 1e-5f);
+            expectNearVec(s.bounds.max, t.bounds.max, 1e-5f);
+            EXPECT_EQ(x.levels[k].screenCoverage.has_value(), y.levels[k].screenCoverage.has_value());
+            if (x.levels[k].screenCoverage && y.levels[k].screenCoverage) {
+                EXPECT_FLOAT_EQ(*x.levels[k].screenCoverage, *y.levels[k].screenCoverage);
+            }
+            ASSERT_EQ(x.levels[k].meshes.size(), y.levels[k].meshes.size());
+            for (std::size_t m = 0; m < x.levels[k].meshes.size(); ++m) {
+                EXPECT_EQ(x.levels[k].meshes[m].material, y.levels[k].meshes[m].material);
+                EXPECT_EQ(x.levels[k].meshes[m].indices, y.levels[k].meshes[m].indices);
+                EXPECT_EQ(x.levels[k].meshes[m].uvs.size(), y.levels[k].meshes[m].uvs.size());
+            }
+        }
+    }
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    for (std::size_t m = 0; m < a.materials.size(); ++m) {
+        EXPECT_EQ(a.materials[m].name, b.materials[m].name);
+        EXPECT_EQ(a.materials[m].baseColorFactor, b.materials[m].baseColorFactor);
+        EXPECT_EQ(a.materials[m].baseColorTexture, b.materials[m].baseColorTexture);
+    }
+    ASSERT_EQ(a.textures.size(), b.textures.size());
+    for (std::size_t t = 0; t < a.textures.size(); ++t) {
+        EXPECT_EQ(a.textures[t].name, b.textures[t].name);
+        EXPECT_EQ(a.textures[t].width, b.textures[t].width);
+        EXPECT_EQ(a.textures[t].height, b.textures[t].height);
+        EXPECT_TRUE(a.textures[t].rgba == b.textures[t].rgba) << "texture " << t << " pixels differ";
+    }
+    ASSERT_EQ(a.views.size(), b.views.size());
+    for (std::size_t v = 0; v < a.views.size(); ++v) expectSameCamera(a.views[v], b.views[v]);
+    ASSERT_EQ(a.paths.size(), b.paths.size());
+    for (std::size_t p = 0; p < a.paths.size(); ++p) {
+        EXPECT_EQ(a.paths[p].name, b.paths[p].name);
+        EXPECT_FLOAT_EQ(a.paths[p].framesPerSecond, b.paths[p].framesPerSecond);
+        ASSERT_EQ(a.paths[p].frames.size(), b.paths[p].frames.size());
+        for (std::size_t f = 0; f < a.paths[p].frames.size(); ++f) {
+            expectSameCamera(a.paths[p].frames[f], b.paths[p].frames[f]);
+            expectNearVec(a.paths[p].frames[f].up, b.paths[p].frames[f].up, 0.0f);
+        }
+    }
+}
+
+Texture checker(const std::string& name, int size, std::uint8_t shade) {
+    Texture texture{name, size, size, {}};
+    for (int y = 0; y < size; ++y) {
+        for (int x = 0; x < size; ++x) {
+            const bool dark = ((x + y) % 2) != 0;
+            texture.rgba.insert(texture.rgba.end(), {std::uint8_t(dark ? shade : 255), std::uint8_t(x * 16), std::uint8_t(y * 16),
+                                                     std::uint8_t(dark ? 128 : 255)});
+        }
+    }
+    return texture;
+}
+
+// Two objects: a box with three authored levels (screen coverage on each) and a textured
+// card with one level; two materials, two textures, two views and a three-frame path.
+Scene handBuiltScene(bool withTextures) {
+    Scene scene;
+    scene.name = "handmade";
+    scene.materials = {{"stone", {0.5f, 0.4f, 0.3f, 1.0f}, -1}, {"leaf", {1.0f, 1.0f, 1.0f, 1.0f}, -1}};
+    if (withTextures) {
+        scene.textures = {checker("bark", 4, 10), checker("leafy", 8, 60)};
+        scene.materials[0].baseColorTexture = 1;
+        scene.materials[1].baseColorTexture = 0;
+    }
+    Object box;
+    box.name = "box";
+    box.transform = glm::mat4(1.0f);
+    box.transform[3] = glm::vec4(3.0f, 0.0f, -2.0f, 1.0f);
+    const float coverage[3] = {0.4f, 0.1f, 0.02f};
+    for (int k = 0; k < 3; ++k) {
+        MeshBuilder builder(0);
+        builder.addCylinder({0, 0, 0}, 2.0f, 1.0f, 0.5f, 16 >> k, true);
+        Level level;
+        level.meshes.push_back(builder.finish());
+        if (k == 0) {
+            MeshBuilder lid(1);
+            lid.addBox({0, 2.2f, 0}, {0.2f, 0.2f, 0.2f});
+            level.meshes.push_back(lid.finish());
+        }
+        level.screenCoverage = coverage[k];
+        box.levels.push_back(std::move(level));
+    }
+    Object card;
+    card.name = "card";
+    MeshBuilder builder(1);
+    builder.addDoubleSidedCard({-1, 0, 0}, {1, 0, 0}, {0, 1, 0}, 1.5f);
+    card.levels.emplace_back();
+    card.levels[0].meshes.push_back(builder.finish());
+    scene.objects = {box, card};
+    scene.views = {Camera{"overview", {6, 4, 8}, {0, 1, 0}, {0, 1, 0}, 50.0f, 0.2f, 200.0f},
+                   Camera{"top", {0, 10, 0.01f}, {0, 0, 0}, {0, 0, -1}, 30.0f, 1.0f, 50.0f}};
+    CameraPath path{"orbit", 24.0f, {}};
+    for (int f = 0; f < 3; ++f) {
+        path.frames.push_back(Camera{"orbit#" + std::to_string(f), {8.0f * std::cos(f * 0.5f), 3, 8.0f * std::sin(f * 0.5f)},
+                                     {0, 1, 0}, {0, 1, 0}, 45.0f + f, 0.1f, 100.0f});
+    }
+    scene.paths = {path};
+    updateStatistics(scene);
+    return scene;
+}
+
+TEST(GltfExport, HandBuiltSceneRoundTripsAsGltfAndGlb) {
+    TempDir dir;
+    const Scene scene = handBuiltScene(false);
+    for (const char* name : {"scene.gltf", "scene.glb"}) {
+        SCOPED_TRACE(name);
+        exportGltf(scene, dir.file(name));
+        expectSameScene(scene, loadGltf(dir.file(name), noGeneration()));
+    }
+}
+
+TEST(GltfExport, TexturedSceneRoundTripsPixelForPixel) {
+    TempDir dir;
+    const Scene scene = handBuiltScene(true);
+    for (const char* name : {"textured.gltf", "textured.GLB"}) {
+        SCOPED_TRACE(name);
+        exportGltf(scene, dir.file(name));
+        const Scene loaded = loadGltf(dir.file(name), noGeneration());
+        expectSameScene(scene, loaded);
+        EXPECT_EQ(loaded.objects[0].levels[0].stats.textureBytes, (4u * 4u + 8u * 8u) * 4u);
+    }
+}
+
+TEST(GltfExport, AuthoredLevelsAreNotRegeneratedOnReload) {
+    TempDir dir;
+    const Scene scene = handBuiltScene(false);
+    exportGltf(scene, dir.file("levels.glb"));
+    GltfLoadOptions options;  // generateLods on
+    const Scene loaded = loadGltf(dir.file("levels.glb"), options);
+    ASSERT_EQ(loaded.objects.size(), 2u);
+    EXPECT_EQ(loaded.objects[0].levels.size(), 3u);
+    for (const Level& level : loaded.objects[0].levels) EXPECT_EQ(level.simplificationError, 0.0f);
+}
+
+TEST(GltfExport, RefusesOtherExtensionsAndLeavesNothingOnFailure) {
+    TempDir dir;
+    Scene scene = handBuiltScene(false);
+    EXPECT_THROW(exportGltf(scene, dir.file("scene.obj")), SceneError);
+    scene.objects[1].levels[0].meshes[0].indices.push_back(100000);  // broken: index out of range
+    scene.objects[1].levels[0].meshes[0].indices.push_back(0);
+    scene.objects[1].levels[0].meshes[0].indices.push_back(1);
+    EXPECT_THROW(exportGltf(scene, dir.file("broken.gltf")), SceneError);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("broken.gltf")));
+    for (const auto& entry : std::filesystem::directory_iterator(dir.file(""))) ADD_FAILURE() << "left behind: " << entry.path();
+}
+
+// Models from /work/shared/data: load (with generated chains), export, load again.
+TEST(GltfExport, SharedModelsRoundTrip) {
+    const std::string data = testing::sharedDataDir() + "/gltf";
+    if (!std::filesystem::exists(data)) GTEST_SKIP() << data << " is absent (shared test data)";
+    TempDir dir;
+    const char* models[] = {"models/FlightHelmet/FlightHelmet.gltf", "msft_lod/babylon_LevelOfDetail/LevelOfDetail.glb",
+                            "models/gltf-transform/many-cubes.gltf", "models/kenney/cakeBirthday.glb",
+                            "models/babylon/cannon.glb"};
+    int index = 0;
+    for (const char* model : models) {
+        SCOPED_TRACE(model);
+        const Scene scene = loadGltf(data + "/" + model);
+        const std::string out = dir.file("model" + std::to_string(index) + (index % 2 ? ".glb" : ".gltf"));
+        ++index;
+        exportGltf(scene, out);
+        expectSameScene(scene, loadGltf(out, noGeneration()));
+    }
+}
+
+}  // namespace
+}  // namespace lodopt::scenes

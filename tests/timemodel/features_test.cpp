@@ -1,0 +1,159 @@
+// Frame features: projected box areas worked out by hand, and the table's O(1) deltas.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scenes/mesh_builder.hpp"
+#include "timemodel/features.hpp"
+
+using namespace lodopt;
+using timemodel::Feature;
+
+namespace {
+
+// Camera at the origin looking down -Z with a 90° vertical field of view, square viewport:
+// a point (x, y, -d) lands at NDC (x/d, y/d).
+scenes::Camera straightCamera() {
+    scenes::Camera camera;
+    camera.position = glm::vec3(0.0f);
+    camera.target = glm::vec3(0.0f, 0.0f, -1.0f);
+    camera.fovYDegrees = 90.0f;
+    camera.nearPlane = 0.1f;
+    camera.farPlane = 100.0f;
+    return camera;
+}
+
+glm::mat4 viewProjection(const scenes::Camera& camera) {
+    return scenes::projectionMatrix(camera, 1.0f) * scenes::viewMatrix(camera);
+}
+
+scenes::Bounds box(glm::vec3 min, glm::vec3 max) {
+    scenes::Bounds b;
+    b.min = min;
+    b.max = max;
+    return b;
+}
+
+//  A 3-object scene, each object a stack of cubes: object o level l has (3 - l) cubes
+//  (12 triangles, 24 vertices each), object 1 carries a 4x4 texture.
+//     o0 at z=-5      o1 at z=-10 (textured)      o2 behind the camera (z=+5)
+scenes::Scene threeObjectScene() {
+    scenes::Scene scene;
+    scene.name = "three";
+    scenes::Texture texture;
+    texture.name = "t";
+    texture.width = texture.height = 4;
+    texture.rgba.assign(4 * 4 * 4, 200);
+    scene.textures.push_back(texture);
+    scene.materials.push_back(scenes::Material{"plain", glm::vec4(1.0f), -1});
+    scene.materials.push_back(scenes::Material{"textured", glm::vec4(1.0f), 0});
+    const float depths[3] = {-5.0f, -10.0f, 5.0f};
+    for (int o = 0; o < 3; ++o) {
+        scenes::Object object;
+        object.name = "o" + std::to_string(o);
+        object.transform = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, depths[o]));
+        for (int l = 0; l < 3; ++l) {
+            scenes::MeshBuilder builder(o == 1 ? 1 : 0);
+            for (int c = 0; c < 3 - l; ++c) builder.addBox(glm::vec3(0.0f, float(c) * 0.5f, 0.0f), glm::vec3(0.5f));
+            scenes::Level level;
+            level.meshes.push_back(builder.finish());
+            object.levels.push_back(std::move(level));
+        }
+        scene.objects.push_back(std::move(object));
+    }
+    scene.views.push_back(straightCamera());
+    scenes::updateStatistics(scene);
+    scenes::validateScene(scene);
+    return scene;
+}
+
+}  // namespace
+
+TEST(ProjectedPixels, FlatSquareCoversAQuarterOfTheViewport) {
+    // x, y in [-1, 1] at distance 2 → NDC [-0.5, 0.5]² → half the width, half the height.
+    const double pixels = timemodel::projectedPixels(box({-1, -1, -2}, {1, 1, -2}), viewProjection(straightCamera()),
+                                                     200, 200);
+    EXPECT_NEAR(pixels, 100.0 * 100.0, 1.0);
+}
+
+TEST(ProjectedPixels, BoxPartlyOutsideIsClippedToTheViewport) {
+    // x in [0, 4] at distance 2 → NDC [0, 2] → clipped to [0, 1]: half the width (100 of 200);
+    // y in [-1, 1] → NDC [-0.5, 0.5]: half the height (50 of 100).
+    const double pixels = timemodel::projectedPixels(box({0, -1, -2}, {4, 1, -2}), viewProjection(straightCamera()),
+                                                     200, 100);
+    EXPECT_NEAR(pixels, 100.0 * 50.0, 1.0);
+}
+
+TEST(ProjectedPixels, BoxBehindTheCameraOrOffScreenIsZero) {
+    const glm::mat4 vp = viewProjection(straightCamera());
+    EXPECT_EQ(timemodel::projectedPixels(box({-1, -1, 2}, {1, 1, 3}), vp, 100, 100), 0.0);
+    EXPECT_EQ(timemodel::projectedPixels(box({10, -1, -3}, {12, 1, -2}), vp, 100, 100), 0.0);
+    EXPECT_EQ(timemodel::projectedPixels(box({-1, -1, -200}, {1, 1, -150}), vp, 100, 100), 0.0);  // beyond far
+    scenes::Bounds empty;
+    empty.min = glm::vec3(0.0f);
+    empty.max = glm::vec3(-1.0f);
+    EXPECT_EQ(timemodel::projectedPixels(empty, vp, 100, 100), 0.0);
+}
+
+TEST(ProjectedPixels, CameraInsideTheBoxCoversEverything) {
+    const double pixels =
+        timemodel::projectedPixels(box({-5, -5, -5}, {5, 5, 5}), viewProjection(straightCamera()), 64, 32);
+    EXPECT_NEAR(pixels, 64.0 * 32.0, 1e-6);
+}
+
+TEST(ProjectedPixels, BoxCrossingTheNearPlaneUsesItsVisiblePart) {
+    // From z = +1 (behind) to z = -4: clipped at the near plane z = -0.1, where x = ±0.2 maps
+    // to ±2 → clipped to the whole width; y in [0, 0.01] maps to [0, 0.1] at the near plane.
+    const double pixels = timemodel::projectedPixels(box({-0.2f, 0.0f, -4.0f}, {0.2f, 0.01f, 1.0f}),
+                                                     viewProjection(straightCamera()), 100, 100);
+    EXPECT_NEAR(pixels, 100.0 * 5.0, 0.5);
+}
+
+TEST(FeatureTable, SumsTheDrawnLevelsStatistics) {
+    const scenes::Scene scene = threeObjectScene();
+    const timemodel::FeatureTable table(scene, scene.views[0], 128, 128);
+    ASSERT_EQ(table.objectCount(), 3);
+    EXPECT_EQ(table.levelCount(1), 3);
+    const timemodel::FrameFeatures f = table.features({0, 2, scenes::kNotDrawn});
+    EXPECT_EQ(f[Feature::kTriangles], 3 * 12 + 1 * 12);
+    EXPECT_EQ(f[Feature::kVertices], 3 * 24 + 1 * 24);
+    EXPECT_EQ(f[Feature::kTextureBytes], 4 * 4 * 4);
+    EXPECT_EQ(f[Feature::kDrawCalls], 2);
+    EXPECT_EQ(f[Feature::kDrawnObjects], 2);
+    EXPECT_EQ(f[Feature::kMatrices], 2);
+    EXPECT_EQ(f[Feature::kBoundingBoxes], 3);  // every object is tested, drawn or not
+    EXPECT_GT(f[Feature::kPixels], 0.0);
+    // Object 2 is behind the camera: drawing it adds work but no pixels.
+    const timemodel::FrameFeatures behind = table.contribution(2, 0);
+    EXPECT_EQ(behind[Feature::kPixels], 0.0);
+    EXPECT_EQ(behind[Feature::kTriangles], 36);
+}
+
+TEST(FeatureTable, DeltaMatchesRecomputationAndDirectComputation) {
+    const scenes::Scene scene = threeObjectScene();
+    const timemodel::FeatureTable table(scene, scene.views[0], 96, 64);
+    scenes::Combination combination = {1, scenes::kNotDrawn, 2};
+    timemodel::FrameFeatures running = table.features(combination);
+    const int changes[][2] = {{1, 0}, {0, scenes::kNotDrawn}, {2, 1}, {1, 2}, {0, 0}};
+    for (const auto& change : changes) {
+        running += table.delta(change[0], combination[change[0]], change[1]);
+        combination[change[0]] = change[1];
+        const timemodel::FrameFeatures fresh = table.features(combination);
+        const timemodel::FrameFeatures direct =
+            timemodel::computeFrameFeatures(scene, combination, scene.views[0], 96, 64);
+        for (std::size_t k = 0; k < timemodel::kFeatureCount; ++k) {
+            EXPECT_NEAR(running.values[k], fresh.values[k], 1e-9) << timemodel::featureName(Feature(k));
+            EXPECT_NEAR(direct.values[k], fresh.values[k], 1e-9) << timemodel::featureName(Feature(k));
+        }
+    }
+    const timemodel::FrameFeatures none = table.features({scenes::kNotDrawn, scenes::kNotDrawn, scenes::kNotDrawn});
+    EXPECT_EQ(none[Feature::kTriangles], 0.0);
+    EXPECT_EQ(none[Feature::kBoundingBoxes], 3.0);
+}
+
+TEST(FeatureTable, FinerLevelsOfTheSameObjectNeverHaveFewerPixels) {
+    // Level 0 stacks more cubes upwards, so its box contains the coarser levels' boxes.
+    const scenes::Scene scene = threeObjectScene();
+    const timemodel::FeatureTable table(scene, scene.views[0], 128, 128);
+    EXPECT_GT(table.contribution(0, 0)[Feature::kPixels], table.contribution(0, 2)[Feature::kPixels]);
+}

@@ -1,0 +1,177 @@
+// Device profiles: JSON round trip, clear errors, mismatch warnings, the shipped profiles, and
+// the per-view estimator built from a profile's model.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "scenes/builtin.hpp"
+#include "timemodel/estimator.hpp"
+#include "timemodel/profile.hpp"
+
+using namespace lodopt;
+
+namespace {
+
+timemodel::DeviceProfile sampleProfile() {
+    std::vector<timemodel::Sample> fit, heldOut;
+    timemodel::SplitMix64 rng(9);
+    for (int i = 0; i < 24; ++i) {
+        timemodel::Sample s;
+        s.features[timemodel::Feature::kTriangles] = rng.between(1e3, 1e5);
+        s.features[timemodel::Feature::kTextureBytes] = rng.between(0.0, 1e6);
+        s.features[timemodel::Feature::kPixels] = rng.between(1e3, 1e5);
+        s.features[timemodel::Feature::kDrawCalls] = 1.0 + double(i % 5);
+        s.measuredMs = 0.3 + 2e-5 * s.features[timemodel::Feature::kTriangles] +
+                       1e-5 * s.features[timemodel::Feature::kPixels];
+        s.viewpoint = i % 4;
+        (i % 4 == 3 ? heldOut : fit).push_back(s);
+    }
+    timemodel::DeviceProfile profile;
+    profile.created = "2024-01-02T03:04:05Z";
+    profile.machine = {"Test CPU", 2};
+    profile.glRenderer = "Mesa / llvmpipe (LLVM 15.0.6, 256 bits)";
+    profile.glVersion = "4.5 (Core Profile) Mesa 22.3.6";
+    profile.width = 512;
+    profile.height = 384;
+    profile.scene = "harbor";
+    profile.seed = 17;
+    profile.viewpoints = 4;
+    profile.heldOutViewpoints = 1;
+    profile.timing = {"cpu", 3, 2, 1, 0.05, 0.1, 12.5};
+    profile.models = timemodel::fitAllModels(fit, heldOut);
+    for (const auto& s : fit) profile.samples.push_back({s, false, s.measuredMs, 1.1 * s.measuredMs, 0.0});
+    for (const auto& s : heldOut) profile.samples.push_back({s, true, s.measuredMs, 1.1 * s.measuredMs, 0.0});
+    return profile;
+}
+
+std::string expectProfileError(const std::string& text) {
+    try {
+        timemodel::profileFromJson(text, "bad.json");
+    } catch (const timemodel::ProfileError& error) {
+        return error.what();
+    }
+    ADD_FAILURE() << "no ProfileError";
+    return "";
+}
+
+}  // namespace
+
+TEST(Profile, RoundTripsThroughJsonAndAFile) {
+    const timemodel::DeviceProfile profile = sampleProfile();
+    const auto path = std::filesystem::temp_directory_path() / "lodopt-timemodel-profile-test.json";
+    timemodel::saveProfile(path.string(), profile);
+    const timemodel::DeviceProfile loaded = timemodel::loadProfile(path.string());
+    std::filesystem::remove(path);
+    EXPECT_EQ(loaded.created, profile.created);
+    EXPECT_EQ(loaded.machine.cpuModel, "Test CPU");
+    EXPECT_EQ(loaded.glRenderer, profile.glRenderer);
+    EXPECT_EQ(loaded.width, 512);
+    EXPECT_EQ(loaded.height, 384);
+    EXPECT_EQ(loaded.seed, 17u);
+    EXPECT_EQ(loaded.timing.rounds, 3);
+    EXPECT_EQ(loaded.timing.clock, "cpu");
+    ASSERT_EQ(loaded.models.size(), profile.models.size());
+    for (std::size_t m = 0; m < loaded.models.size(); ++m) {
+        EXPECT_EQ(loaded.models[m].name, profile.models[m].name);
+        EXPECT_EQ(loaded.models[m].fitted, profile.models[m].fitted);
+        ASSERT_EQ(loaded.models[m].coefficients.size(), profile.models[m].coefficients.size());
+        for (std::size_t c = 0; c < loaded.models[m].coefficients.size(); ++c) {
+            EXPECT_DOUBLE_EQ(loaded.models[m].coefficients[c], profile.models[m].coefficients[c]);
+        }
+        EXPECT_DOUBLE_EQ(loaded.models[m].heldOutErrors.p90, profile.models[m].heldOutErrors.p90);
+    }
+    ASSERT_EQ(loaded.samples.size(), profile.samples.size());
+    EXPECT_DOUBLE_EQ(loaded.samples[5].sample.measuredMs, profile.samples[5].sample.measuredMs);
+    EXPECT_DOUBLE_EQ(loaded.samples[5].wallMedianMs, profile.samples[5].wallMedianMs);
+    EXPECT_EQ(loaded.samples[5].cpuMs, 0.0);  // not recorded
+    // The model built from the file predicts what the fitted one did.
+    const auto model = timemodel::modelFromProfile(loaded);
+    EXPECT_EQ(model->name(), "linear");
+    const timemodel::Sample& s = profile.samples[0].sample;
+    EXPECT_NEAR(model->estimateMs(s.features), s.measuredMs, 1e-6);
+    EXPECT_EQ(timemodel::modelFromProfile(loaded, "wimmer")->name(), "wimmer");
+}
+
+TEST(Profile, BadFilesGiveMessagesNamingTheFileAndField) {
+    EXPECT_NE(expectProfileError("{not json").find("bad.json: not valid JSON"), std::string::npos);
+    EXPECT_NE(expectProfileError("{\"format\": \"other\"}").find("format"), std::string::npos);
+    std::string text = timemodel::profileToJson(sampleProfile());
+    const std::string key = "\"triangles\":";
+    std::string missing = text;
+    missing.replace(missing.find(key), key.size(), "\"triangle\":");
+    const std::string message = expectProfileError(missing);
+    EXPECT_NE(message.find("models[0].coefficients.triangles: missing"), std::string::npos) << message;
+    std::string wrongType = text;
+    wrongType.replace(wrongType.find("\"width\": 512"), 12, "\"width\": \"x\"");
+    EXPECT_NE(expectProfileError(wrongType).find("render_size.width"), std::string::npos);
+    EXPECT_THROW(timemodel::loadProfile("/nonexistent/profile.json"), timemodel::ProfileError);
+    EXPECT_THROW(timemodel::modelFromProfile(sampleProfile(), "nosuch"), timemodel::ProfileError);
+}
+
+TEST(Profile, WarnsWhenRendererSizeOrMachineDiffer) {
+    const timemodel::DeviceProfile profile = sampleProfile();
+    EXPECT_TRUE(timemodel::profileWarnings(profile, profile.glRenderer, 512, 384, profile.machine).empty());
+    EXPECT_EQ(timemodel::profileWarnings(profile, "NVIDIA / RTX", 512, 384, profile.machine).size(), 1u);
+    EXPECT_EQ(timemodel::profileWarnings(profile, profile.glRenderer, 1024, 384, profile.machine).size(), 1u);
+    EXPECT_EQ(timemodel::profileWarnings(profile, "", 512, 384, {"Other CPU", 64}).size(), 1u);
+}
+
+TEST(Profile, DescribesThisMachine) {
+    const timemodel::MachineDescription machine = timemodel::describeMachine();
+    EXPECT_FALSE(machine.cpuModel.empty());
+    EXPECT_GT(machine.cores, 0);
+    EXPECT_EQ(timemodel::currentDateUtc().size(), 20u);
+}
+
+TEST(ShippedProfiles, ParseAndPredictPositiveTimesForTheirScenes) {
+    const std::vector<std::string> scenesWithProfiles = timemodel::shippedProfileScenes();
+    if (scenesWithProfiles.empty()) GTEST_SKIP() << "this build ships no profile (timemodel/profiles/ is empty)";
+    for (const std::string& name : scenesWithProfiles) {
+        bool exact = false;
+        const timemodel::DeviceProfile profile = timemodel::shippedProfile(name, &exact);
+        EXPECT_TRUE(exact);
+        EXPECT_EQ(profile.scene, name);
+        if (!scenes::isBuiltinScene(name)) continue;
+        const scenes::Scene scene = scenes::makeBuiltinScene(name, profile.sceneSeed);
+        for (const std::string& model : timemodel::timeModelNames()) {
+            std::shared_ptr<const timemodel::TimeModel> fitted = timemodel::modelFromProfile(profile, model);
+            timemodel::ViewTimeEstimator estimator(scene, scene.views[0], profile.width, profile.height, fitted);
+            EXPECT_GT(estimator.estimateMs(scenes::referenceCombination(scene)), 0.0) << name << " " << model;
+        }
+    }
+}
+
+TEST(ViewTimeEstimator, DeltaIsTheDifferenceOfEstimatesForEveryModel) {
+    const scenes::Scene scene = scenes::makeHarborScene();
+    const timemodel::DeviceProfile profile = sampleProfile();
+    for (const std::string& name : timemodel::timeModelNames()) {
+        std::shared_ptr<const timemodel::TimeModel> model = timemodel::modelFromProfile(profile, name);
+        const timemodel::ViewTimeEstimator estimator(scene, scene.views[1], 256, 256, model);
+        scenes::Combination combination = {2, 0, scenes::kNotDrawn};
+        timemodel::FrameFeatures current = estimator.table().features(combination);
+        for (int object = 0; object < 3; ++object) {
+            for (int level = scenes::kNotDrawn; level < 3; ++level) {
+                scenes::Combination changed = combination;
+                changed[object] = level;
+                const double expected = estimator.estimateMs(changed) - estimator.estimateMs(combination);
+                EXPECT_NEAR(estimator.deltaMs(current, object, combination[object], level), expected, 1e-9) << name;
+                EXPECT_NEAR(estimator.deltaMs(combination, object, level), expected, 1e-9) << name;
+            }
+        }
+        // Finer levels cost more under a fitted model with non-negative coefficients.
+        EXPECT_GE(estimator.estimateMs(scenes::referenceCombination(scene)),
+                  estimator.estimateMs(scenes::coarsestCombination(scene)))
+            << name;
+    }
+}
+
+TEST(ViewTimeEstimator, SeesFeedbackAppliedToTheSharedModel) {
+    const scenes::Scene scene = scenes::makeHarborScene();
+    std::shared_ptr<timemodel::TimeModel> model = timemodel::modelFromProfile(sampleProfile());
+    const timemodel::ViewTimeEstimator estimator(scene, scene.views[0], 256, 256, model);
+    const scenes::Combination combination = scenes::referenceCombination(scene);
+    const double before = estimator.estimateMs(combination);
+    model->applyFeedback(estimator.table().features(combination), 2.0 * before);
+    EXPECT_NEAR(estimator.estimateMs(combination), 1.3 * before, 1e-9 * before);
+}

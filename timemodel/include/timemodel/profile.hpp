@@ -1,0 +1,110 @@
+// Device profiles: one calibration run written down, so a model can be used without re-timing.
+//
+// A profile is a JSON file holding, for every model, its coefficients (by name), fit notes and
+// residuals and its held-out error statistics, plus what it was measured on: CPU model and core
+// count, the OpenGL renderer and version strings, the render size, the scene, the date, the
+// timing settings, and the samples themselves. Profiles measured on the build machine for the
+// built-in scenes ship inside the library (timemodel/profiles/<scene>.json), so an estimate
+// works without one from any working directory.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "timemodel/calibration.hpp"
+#include "timemodel/time_model.hpp"
+
+namespace lodopt::timemodel {
+
+// A profile file that cannot be used: the message names the file (or "shipped profile
+// 'harbor'") and the field.
+class ProfileError : public TimeModelError {
+public:
+    using TimeModelError::TimeModelError;
+};
+
+struct MachineDescription {
+    std::string cpuModel;  // /proc/cpuinfo "model name", "unknown" when unreadable
+    int cores = 0;         // hardware threads
+};
+// The machine this process runs on.
+MachineDescription describeMachine();
+
+// What a sample's measured time is (the fitted target):
+//   "wall-min"     least steady-clock time of draw + glFinish over every timed draw of the
+//                  sample: others' load only ever adds time, so the minimum is the best
+//                  estimate of the frame's time on an unloaded machine;
+//   "wall-median"  median over the passes of each pass's median (what `render --time` does);
+//   "cpu"          median process CPU time (all of llvmpipe's threads) of draw + glFinish:
+//                  the work, nearly immune to other tenants, but not wall time.
+inline constexpr const char* kDefaultTimingClock = "wall-min";
+std::vector<std::string> timingClockNames();
+
+struct TimingSettings {
+    std::string clock = kDefaultTimingClock;
+    int rounds = 0;            // interleaved passes over all samples
+    int repeatsPerRound = 0;   // timed draws per sample per pass (median taken)
+    int warmup = 0;            // untimed draws before each timed batch
+    double medianSpread = 0.0; // median over samples of (max − min) / median across passes
+    double p90Spread = 0.0;
+    double seconds = 0.0;      // wall time of the whole calibration
+};
+
+struct ProfileSample {
+    Sample sample;  // measuredMs per TimingSettings::clock
+    bool heldOut = false;
+    // Every statistic of the same draws (0 when not recorded), so one run can be refitted
+    // to another clock.
+    double wallMinMs = 0.0;
+    double wallMedianMs = 0.0;
+    double cpuMs = 0.0;
+};
+
+struct DeviceProfile {
+    std::string created;  // ISO 8601 UTC, e.g. 2024-05-01T12:00:00Z
+    MachineDescription machine;
+    std::string glRenderer;  // "vendor / renderer" as renderer::Renderer::glRendererString()
+    std::string glVersion;
+    int width = 0;
+    int height = 0;
+    std::string scene;
+    std::uint32_t sceneSeed = 1;
+    std::uint64_t seed = 1;  // calibration plan seed
+    int viewpoints = 0;
+    int heldOutViewpoints = 0;
+    TimingSettings timing;
+    std::string defaultModel = kDefaultTimeModel;
+    std::vector<ModelResult> models;
+    std::vector<ProfileSample> samples;  // may be empty
+};
+
+std::string profileToJson(const DeviceProfile& profile);
+// `source` names the text in error messages (a path, "shipped profile 'harbor'").
+DeviceProfile profileFromJson(const std::string& text, const std::string& source);
+// Written atomically; throws on I/O failure.
+void saveProfile(const std::string& path, const DeviceProfile& profile);
+// Throws ProfileError when the file is missing, not JSON, or lacks a field.
+DeviceProfile loadProfile(const std::string& path);
+
+// A fitted model from the profile: `name` empty means the profile's default model. Throws
+// ProfileError when the profile has no such model or it was not fitted.
+std::unique_ptr<TimeModel> modelFromProfile(const DeviceProfile& profile, const std::string& name = "");
+
+// Why a profile may not fit the current setup: a different renderer string, render size,
+// CPU model or core count (one sentence each; empty when it matches). Empty `glRenderer`
+// skips that check.
+std::vector<std::string> profileWarnings(const DeviceProfile& profile, const std::string& glRenderer, int width,
+                                         int height, const MachineDescription& machine);
+
+// Scenes with a profile built into the library.
+std::vector<std::string> shippedProfileScenes();
+// The shipped profile for `scene`, or for the default scene when there is none for it
+// (`exact` tells which). Throws ProfileError when the library ships none at all.
+DeviceProfile shippedProfile(const std::string& scene, bool* exact = nullptr);
+
+// Now, as ISO 8601 UTC.
+std::string currentDateUtc();
+
+}  // namespace lodopt::timemodel

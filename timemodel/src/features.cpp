@@ -1,0 +1,270 @@
+// Frame features (DONG15 eq. 5; CITY17 after Wimmer & Wonka 2003): per-level sums and the
+// projected bounding-box area that CITY17 uses for "#pixels".
+#include "timemodel/features.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdint>
+
+namespace lodopt::timemodel {
+
+const char* featureName(Feature feature) {
+    switch (feature) {
+        case Feature::kVertices: return "vertices";
+        case Feature::kTriangles: return "triangles";
+        case Feature::kTextureBytes: return "texture_bytes";
+        case Feature::kDrawCalls: return "draw_calls";
+        case Feature::kPixels: return "pixels";
+        case Feature::kDrawnObjects: return "drawn_objects";
+        case Feature::kMatrices: return "matrices";
+        case Feature::kBoundingBoxes: return "bounding_boxes";
+        case Feature::kVisibleTriangles: return "visible_triangles";
+        case Feature::kRasterPixels: return "raster_pixels";
+    }
+    return "unknown";
+}
+
+const std::array<Feature, kFeatureCount>& allFeatures() {
+    static const std::array<Feature, kFeatureCount> features = {
+        Feature::kVertices,      Feature::kTriangles,        Feature::kTextureBytes, Feature::kDrawCalls,
+        Feature::kPixels,        Feature::kDrawnObjects,     Feature::kMatrices,     Feature::kBoundingBoxes,
+        Feature::kVisibleTriangles, Feature::kRasterPixels};
+    return features;
+}
+
+FrameFeatures& FrameFeatures::operator+=(const FrameFeatures& other) {
+    for (std::size_t i = 0; i < kFeatureCount; ++i) values[i] += other.values[i];
+    return *this;
+}
+
+FrameFeatures& FrameFeatures::operator-=(const FrameFeatures& other) {
+    for (std::size_t i = 0; i < kFeatureCount; ++i) values[i] -= other.values[i];
+    return *this;
+}
+
+FrameFeatures operator+(FrameFeatures a, const FrameFeatures& b) { return a += b; }
+FrameFeatures operator-(FrameFeatures a, const FrameFeatures& b) { return a -= b; }
+
+namespace {
+
+// Signed distances to the near (z >= -w) and far (z <= w) planes in clip space.
+float nearDistance(const glm::vec4& p) { return p.z + p.w; }
+float farDistance(const glm::vec4& p) { return p.w - p.z; }
+
+// Clips segment [a, b] to one plane given by `distance` (inside >= 0); false when nothing is left.
+template <typename Distance>
+bool clipSegment(glm::vec4& a, glm::vec4& b, Distance distance) {
+    const float da = distance(a), db = distance(b);
+    if (da < 0.0f && db < 0.0f) return false;
+    if (da < 0.0f) a = a + (b - a) * (da / (da - db));
+    else if (db < 0.0f) b = b + (a - b) * (db / (db - da));
+    return true;
+}
+
+}  // namespace
+
+double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& modelViewProjection, int width,
+                       int height) {
+    assert(width > 0 && height > 0);
+    if (objectBounds.empty()) return 0.0;
+    glm::vec4 corners[8];
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? objectBounds.max.x : objectBounds.min.x,
+                          (corner & 2) ? objectBounds.max.y : objectBounds.min.y,
+                          (corner & 4) ? objectBounds.max.z : objectBounds.min.z);
+        corners[corner] = modelViewProjection * glm::vec4(p, 1.0f);
+    }
+    // The clipped box's vertices are its corners inside both planes plus the edges' crossings
+    // of them, so clipping the 12 edges and projecting their ends gives its exact outline.
+    float minX = 1e30f, minY = 1e30f, maxX = -1e30f, maxY = -1e30f;
+    bool any = false;
+    for (int a = 0; a < 8; ++a) {
+        for (int axis = 1; axis < 8; axis <<= 1) {
+            if (a & axis) continue;
+            glm::vec4 p = corners[a], q = corners[a | axis];
+            if (!clipSegment(p, q, nearDistance) || !clipSegment(p, q, farDistance)) continue;
+            for (const glm::vec4& point : {p, q}) {
+                if (point.w <= 0.0f) continue;  // only possible for a degenerate projection
+                const float x = point.x / point.w, y = point.y / point.w;
+                minX = std::min(minX, x);
+                maxX = std::max(maxX, x);
+                minY = std::min(minY, y);
+                maxY = std::max(maxY, y);
+                any = true;
+            }
+        }
+    }
+    if (!any) return 0.0;
+    minX = std::max(minX, -1.0f);
+    minY = std::max(minY, -1.0f);
+    maxX = std::min(maxX, 1.0f);
+    maxY = std::min(maxY, 1.0f);
+    if (maxX <= minX || maxY <= minY) return 0.0;
+    return double(maxX - minX) * 0.5 * width * double(maxY - minY) * 0.5 * height;
+}
+
+namespace {
+
+// Outcode bits: outside the plane x < -w, x > w, y < -w, y > w, z < -w (near), z > w (far).
+std::uint8_t outcode(const glm::vec4& p) {
+    std::uint8_t code = 0;
+    if (p.x < -p.w) code |= 1;
+    if (p.x > p.w) code |= 2;
+    if (p.y < -p.w) code |= 4;
+    if (p.y > p.w) code |= 8;
+    if (p.z < -p.w) code |= 16;
+    if (p.z > p.w) code |= 32;
+    return code;
+}
+
+// Screen area in pixels of triangle (a, b, c) in clip space after clipping to the near plane,
+// at most the viewport part of its bounding rectangle.
+double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, double halfWidth,
+                            double halfHeight) {
+    glm::vec4 polygon[4];
+    int count = 0;
+    const glm::vec4 in[3] = {a, b, c};
+    for (int i = 0; i < 3; ++i) {  // Sutherland–Hodgman against z >= -w
+        const glm::vec4& p = in[i];
+        const glm::vec4& q = in[(i + 1) % 3];
+        const float dp = p.z + p.w, dq = q.z + q.w;
+        if (dp >= 0.0f) polygon[count++] = p;
+        if ((dp >= 0.0f) != (dq >= 0.0f)) polygon[count++] = p + (q - p) * (dp / (dp - dq));
+    }
+    if (count < 3) return 0.0;
+    double xs[4], ys[4];
+    double minX = 1e30, maxX = -1e30, minY = 1e30, maxY = -1e30;
+    for (int i = 0; i < count; ++i) {
+        const double w = std::max(double(polygon[i].w), 1e-12);
+        xs[i] = double(polygon[i].x) / w * halfWidth;
+        ys[i] = double(polygon[i].y) / w * halfHeight;
+        minX = std::min(minX, xs[i]);
+        maxX = std::max(maxX, xs[i]);
+        minY = std::min(minY, ys[i]);
+        maxY = std::max(maxY, ys[i]);
+    }
+    double twiceArea = 0.0;
+    for (int i = 0; i < count; ++i) {
+        const int j = (i + 1) % count;
+        twiceArea += xs[i] * ys[j] - xs[j] * ys[i];
+    }
+    const double visibleWidth = std::min(maxX, halfWidth) - std::max(minX, -halfWidth);
+    const double visibleHeight = std::min(maxY, halfHeight) - std::max(minY, -halfHeight);
+    if (visibleWidth <= 0.0 || visibleHeight <= 0.0) return 0.0;
+    return std::min(0.5 * std::abs(twiceArea), visibleWidth * visibleHeight);
+}
+
+}  // namespace
+
+RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
+                              int height) {
+    assert(width > 0 && height > 0);
+    RasterFeatures result;
+    std::vector<glm::vec4> clip;
+    std::vector<std::uint8_t> codes;
+    for (const scenes::Mesh& mesh : meshes) {
+        clip.resize(mesh.positions.size());
+        codes.resize(mesh.positions.size());
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+            clip[v] = modelViewProjection * glm::vec4(mesh.positions[v], 1.0f);
+            codes[v] = outcode(clip[v]);
+        }
+        for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+            const std::uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
+            if (codes[a] & codes[b] & codes[c]) continue;  // trivially outside one plane
+            result.visibleTriangles += 1.0;
+            result.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height);
+        }
+    }
+    return result;
+}
+
+namespace {
+
+FrameFeatures levelContribution(const scenes::Level& level, const glm::mat4& modelViewProjection, int width,
+                                int height) {
+    const scenes::LevelStats& stats = level.stats;
+    FrameFeatures f;
+    f[Feature::kVertices] = double(stats.vertices);
+    f[Feature::kTriangles] = double(stats.triangles);
+    f[Feature::kTextureBytes] = double(stats.textureBytes);
+    f[Feature::kDrawCalls] = double(stats.drawCalls);
+    f[Feature::kPixels] = projectedPixels(stats.bounds, modelViewProjection, width, height);
+    f[Feature::kDrawnObjects] = 1.0;
+    f[Feature::kMatrices] = 1.0;
+    const RasterFeatures raster = rasterFeatures(level.meshes, modelViewProjection, width, height);
+    f[Feature::kVisibleTriangles] = raster.visibleTriangles;
+    f[Feature::kRasterPixels] = raster.rasterPixels;
+    return f;
+}
+
+glm::mat4 viewProjectionMatrix(const scenes::Camera& camera, int width, int height) {
+    return scenes::projectionMatrix(camera, float(width) / float(height)) * scenes::viewMatrix(camera);
+}
+
+}  // namespace
+
+FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height) {
+    assert(width > 0 && height > 0);
+    const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
+    mFirstLevel.reserve(scene.objects.size() + 1);
+    for (const scenes::Object& object : scene.objects) {
+        mFirstLevel.push_back(static_cast<int>(mContributions.size()));
+        const glm::mat4 modelViewProjection = viewProjection * object.transform;
+        for (const scenes::Level& level : object.levels) {
+            mContributions.push_back(levelContribution(level, modelViewProjection, width, height));
+        }
+    }
+    mFirstLevel.push_back(static_cast<int>(mContributions.size()));  // end sentinel
+    mFrameConstant[Feature::kBoundingBoxes] = double(scene.objects.size());
+}
+
+int FeatureTable::levelCount(int object) const {
+    assert(object >= 0 && object < objectCount());
+    return mFirstLevel[object + 1] - mFirstLevel[object];
+}
+
+const FrameFeatures& FeatureTable::contribution(int object, int level) const {
+    assert(object >= 0 && object < objectCount());
+    if (level == scenes::kNotDrawn) return mZero;
+    assert(level >= 0 && level < levelCount(object));
+    return mContributions[mFirstLevel[object] + level];
+}
+
+void FeatureTable::features(const scenes::Combination& combination, FrameFeatures& out) const {
+    assert(static_cast<int>(combination.size()) == objectCount());
+    out = mFrameConstant;
+    for (int object = 0; object < objectCount(); ++object) {
+        const int level = combination[object];
+        if (level != scenes::kNotDrawn) out += contribution(object, level);
+    }
+}
+
+FrameFeatures FeatureTable::features(const scenes::Combination& combination) const {
+    FrameFeatures out;
+    features(combination, out);
+    return out;
+}
+
+FrameFeatures FeatureTable::delta(int object, int oldLevel, int newLevel) const {
+    return contribution(object, newLevel) - contribution(object, oldLevel);
+}
+
+FrameFeatures computeFrameFeatures(const scenes::Scene& scene, const scenes::Combination& combination,
+                                   const scenes::Camera& camera, int width, int height) {
+    assert(combination.size() == scene.objects.size());
+    assert(width > 0 && height > 0);
+    const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
+    FrameFeatures out;
+    out[Feature::kBoundingBoxes] = double(scene.objects.size());
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const int level = combination[o];
+        if (level == scenes::kNotDrawn) continue;
+        const scenes::Object& object = scene.objects[o];
+        out += levelContribution(object.levels[level], viewProjection * object.transform, width, height);
+    }
+    return out;
+}
+
+}  // namespace lodopt::timemodel
