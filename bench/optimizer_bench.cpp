@@ -94,9 +94,9 @@ void BM_GapsoRun(benchmark::State& state) {
         const Result result = Gapso().run(problem, termination);
         evaluations += result.evaluations;
     }
-    state.counters["us/evaluation"] = benchmark::Counter(
-        static_cast<double>(evaluations), benchmark::Counter::kIsRate | benchmark::Counter::kInvert,
-        benchmark::Counter::kIs1000);
+    state.counters["us/evaluation"] =
+        benchmark::Counter(static_cast<double>(evaluations), benchmark::Counter::kIsRate | benchmark::Counter::kInvert,
+                           benchmark::Counter::kIs1000);
 }
 BENCHMARK(BM_GapsoRun)->Arg(1000)->Unit(benchmark::kMillisecond);
 
@@ -122,7 +122,8 @@ std::vector<Contender> contenders(const Problem& problem) {
     // evaluations are charged to the same budget by the caller.
     (void)problem;
     list.push_back({"gapso+mckp", nullptr});
-    list.push_back({"gapso-paper", [](std::uint64_t seed) { return std::make_unique<Gapso>(GapsoParameters::paper(seed)); }});
+    list.push_back(
+        {"gapso-paper", [](std::uint64_t seed) { return std::make_unique<Gapso>(GapsoParameters::paper(seed)); }});
     for (const char* name : {"distance", "importance", "screensize"}) {
         list.push_back({name, [name](std::uint64_t seed) { return makeAlgorithm(name, seed); }});
     }
@@ -169,14 +170,16 @@ int compare() {
         termination.maxIterations = kIterationCap;
         bestKnown = std::max(bestKnown, Gapso(longRun).run(problem, termination).bestScore.fitness);
     }
-    std::printf("Synthetic problem (optimizer/synthetic.hpp defaults, seed 1): %zu variables, %.0f combinations, "
-                "budget %.3f ms (min %.3f, max %.3f)\n",
-                problem.levelCounts.size(), combinationCount(problem.levelCounts), problem.budgetMs,
-                synthetic.cost().predictMs(coarsestCombination(problem)),
-                synthetic.cost().predictMs(finestCombination(problem)));
-    std::printf("reference (all finest, infeasible) fitness 1; all coarsest %.4f; best known %.4f (gapso, 30 "
-                "particles, 50000 evaluations, best of 5 seeds)\n\n",
-                synthetic.evaluator().fitness(coarsestCombination(problem)), bestKnown);
+    std::printf(
+        "Synthetic problem (optimizer/synthetic.hpp defaults, seed 1): %zu variables, %.0f combinations, "
+        "budget %.3f ms (min %.3f, max %.3f)\n",
+        problem.levelCounts.size(), combinationCount(problem.levelCounts), problem.budgetMs,
+        synthetic.cost().predictMs(coarsestCombination(problem)),
+        synthetic.cost().predictMs(finestCombination(problem)));
+    std::printf(
+        "reference (all finest, infeasible) fitness 1; all coarsest %.4f; best known %.4f (gapso, 30 "
+        "particles, 50000 evaluations, best of 5 seeds)\n\n",
+        synthetic.evaluator().fitness(coarsestCombination(problem)), bestKnown);
 
     const std::vector<Contender> list = contenders(problem);
     std::printf("| algorithm |");
@@ -188,7 +191,8 @@ int compare() {
         std::printf("| %s |", contender.label.c_str());
         for (auto budget : budgets) {
             std::vector<double> best;
-            for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) best.push_back(runOnce(contender, problem, budget, seed));
+            for (std::uint64_t seed = 1; seed <= kSeeds; ++seed)
+                best.push_back(runOnce(contender, problem, budget, seed));
             std::printf(" %.4f [%.4f, %.4f] |", median(best), *std::min_element(best.begin(), best.end()),
                         *std::max_element(best.begin(), best.end()));
         }
@@ -196,7 +200,8 @@ int compare() {
     }
 
     // Table 2: ten problem instances (instance seed = algorithm seed), gap to the best known.
-    std::printf("\nTen instances (seeds 1-10), median gap to the instance's best known fitness at 500 evaluations:\n\n");
+    std::printf(
+        "\nTen instances (seeds 1-10), median gap to the instance's best known fitness at 500 evaluations:\n\n");
     std::printf("| algorithm | median gap | worst gap |\n|---|---|---|\n");
     std::map<std::string, std::vector<double>> gaps;
     for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
@@ -248,9 +253,9 @@ public:
 int sweep() {
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
     HarborEvaluator harborEvaluator;
-    const AdditiveCost harborCost(0.5, {{1.228, 0.822, 0.600, 0.450, 0.393},
-                                        {6.578, 6.013, 5.317, 3.341, 3.071},
-                                        {3.0, 2.4, 1.8, 1.2, 0.7, 0.3}});
+    const AdditiveCost harborCost(
+        0.5,
+        {{1.228, 0.822, 0.600, 0.450, 0.393}, {6.578, 6.013, 5.317, 3.341, 3.071}, {3.0, 2.4, 1.8, 1.2, 0.7, 0.3}});
     Problem harbor;
     harbor.levelCounts = {5, 5, 6};
     harbor.evaluator = &harborEvaluator;
@@ -274,8 +279,9 @@ int sweep() {
                 found += result.best == truth.best;
                 evaluations += static_cast<double>(result.evaluations);
             }
-            std::printf("| %s | %s | %d/40 | %.1f |\n", paper ? "paper (N 3, w 1, c 2)" : "defaults (N 12, w 0.7, c 1.5)",
-                        kick ? "on" : "off", found, evaluations / 40.0);
+            std::printf("| %s | %s | %d/40 | %.1f |\n",
+                        paper ? "paper (N 3, w 1, c 2)" : "defaults (N 12, w 0.7, c 1.5)", kick ? "on" : "off", found,
+                        evaluations / 40.0);
         }
     }
 

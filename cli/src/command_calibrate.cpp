@@ -1,9 +1,11 @@
 // lodopt calibrate: render sampled combinations from sampled viewpoints, time them robustly,
 // fit every render-time model and write a device profile (method.md §4; timemodel/).
 //
-// Timing on a shared, noisy machine: every sample is timed in `rounds` interleaved passes
-// (a fresh shuffled order per pass, so a burst of load from elsewhere spreads over many
-// samples instead of ruining one), each pass `warmup` untimed draws then `repeats` timed
+// Timing on a shared, noisy machine: every sample is timed in interleaved passes (a fresh
+// shuffled order per pass, so a burst of load from elsewhere spreads over many samples
+// instead of ruining one): at least `rounds` passes, then more (up to `maxRounds`) while the
+// command's wall time stays within `timeBudget` seconds, so a fast scene gets more draws per
+// sample and a slow one still finishes. Each pass `warmup` untimed draws then `repeats` timed
 // draws of draw + glFinish (renderer::Renderer::drawAndFinish), each on the steady clock and
 // on the process CPU clock (all of llvmpipe's threads). The fitted time is the statistic that
 // --clock names (timemodel::TimingSettings); all three are kept in the profile.
@@ -35,6 +37,8 @@ struct CalibrateOptions {
     std::string size = "512x512";
     int jitter = 3;
     int rounds = 3;
+    int maxRounds = 15;
+    double timeBudget = 80.0;
     int repeats = 3;
     int warmup = 1;
     std::string clock = timemodel::kDefaultTimingClock;
@@ -119,20 +123,28 @@ void runCalibrate(const CalibrateOptions& options) {
     renderer::Renderer renderer(scene, settings);
     const std::size_t count = plan.samples.size();
     std::vector<SampleTimings> timings(count);
-    Progress progress("calibrate", count * std::size_t(options.rounds), options.output.quiet || options.output.json);
     timemodel::SplitMix64 shuffle(options.seed ^ 0xC0FFEEull);
     std::vector<std::size_t> order(count);
     for (std::size_t i = 0; i < count; ++i) order[i] = i;
-    for (int round = 0; round < options.rounds; ++round) {
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    int passes = 0;
+    double slowestPass = 0.0;
+    while (passes < options.rounds ||
+           (passes < std::max(options.rounds, options.maxRounds) && elapsed() + slowestPass <= options.timeBudget)) {
+        const double passStart = elapsed();
+        Progress progress("calibrate pass " + std::to_string(passes + 1), count,
+                          options.output.quiet || options.output.json);
         for (std::size_t i = count; i > 1; --i) std::swap(order[i - 1], order[std::size_t(shuffle.below(int(i)))]);
         for (std::size_t index : order) {
             const timemodel::PlannedSample& planned = plan.samples[index];
             timePass(renderer, planned.combination, plan.viewpoints[planned.viewpoint].camera, options.repeats,
                      options.warmup, timings[index]);
-            progress.step("round " + std::to_string(round + 1));
+            progress.step();
         }
+        progress.finish();
+        slowestPass = std::max(slowestPass, elapsed() - passStart);
+        ++passes;
     }
-    progress.finish();
 
     timemodel::DeviceProfile profile;
     std::vector<timemodel::Sample> fitSamples, heldOutSamples;
@@ -180,7 +192,7 @@ void runCalibrate(const CalibrateOptions& options) {
     profile.heldOutViewpoints = static_cast<int>(std::count_if(
         plan.viewpoints.begin(), plan.viewpoints.end(), [](const timemodel::Viewpoint& v) { return v.heldOut; }));
     const timemodel::ErrorStats spread = timemodel::summarizeErrors(spreads);
-    profile.timing = {options.clock, options.rounds, options.repeats, options.warmup, spread.median, spread.p90, 0.0};
+    profile.timing = {options.clock, passes, options.repeats, options.warmup, spread.median, spread.p90, 0.0};
     profile.timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     timemodel::saveProfile(options.out, profile);
 
@@ -226,7 +238,7 @@ void runCalibrate(const CalibrateOptions& options) {
                   "timing: clock %s, %d passes x %d draws (+%d warm-up); spread between passes: median %.1f%%, "
                   "p90 %.1f%%\n",
                   count, fitSamples.size(), profile.viewpoints - profile.heldOutViewpoints, heldOutSamples.size(),
-                  profile.heldOutViewpoints, options.clock.c_str(), options.rounds, options.repeats, options.warmup,
+                  profile.heldOutViewpoints, options.clock.c_str(), passes, options.repeats, options.warmup,
                   100.0 * spread.median, 100.0 * spread.p90);
     std::cout << line << timemodel::formatErrorTable(profile.models);
     for (const timemodel::ModelResult& r : profile.models) {
@@ -254,9 +266,16 @@ void addCalibrateCommand(CLI::App& app) {
     command->add_option("--jitter", options->jitter, "Extra viewpoints around each named view")
         ->capture_default_str()
         ->check(CLI::Range(0, 100));
-    command->add_option("--rounds", options->rounds, "Interleaved timing passes over all samples")
+    command->add_option("--rounds", options->rounds, "Least interleaved timing passes over all samples")
         ->capture_default_str()
         ->check(CLI::Range(1, 100));
+    command->add_option("--max-rounds", options->maxRounds, "Most passes while within --time-budget")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    command->add_option("--time-budget", options->timeBudget,
+                        "Seconds after which no further pass starts (beyond --rounds)")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 86400.0));
     command->add_option("--repeats", options->repeats, "Timed draws per sample per pass (median)")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));

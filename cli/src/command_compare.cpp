@@ -72,7 +72,9 @@ void addCompareCommand(CLI::App& app) {
         if (options->view == "all") throw UsageError("compare: --view must name one view");
         OptimizeOptions runOptions = *options;
         runOptions.maxEvaluations = *evaluations;
-        runOptions.maxIterations = 0;     // the evaluation budget decides
+        // The evaluation budget decides; the iteration cap only stops a converged swarm that
+        // would otherwise circle through cached candidates forever.
+        runOptions.maxIterations = int(std::max<std::int64_t>(*evaluations, 1000));
         runOptions.stableIterations = 0;
         PreparedScene prepared = prepareScene(runOptions);
         ViewContext context = prepareView(prepared, prepared.views[0], runOptions);

@@ -38,6 +38,31 @@ renderer::PixelRect unite(const renderer::PixelRect& a, const renderer::PixelRec
     return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
 }
 
+bool overlaps(const renderer::PixelRect& a, const renderer::PixelRect& b) {
+    return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+// Overlapping rectangles become their union, so no pixel is composited or scored twice.
+void mergeOverlapping(std::vector<renderer::PixelRect>& rects) {
+    if (rects.size() > 32) {  // many changes: one bounding rectangle is cheaper than the merge
+        for (std::size_t i = 1; i < rects.size(); ++i) rects[0] = unite(rects[0], rects[i]);
+        rects.resize(1);
+        return;
+    }
+    for (bool merged = true; merged;) {
+        merged = false;
+        for (std::size_t i = 0; i < rects.size() && !merged; ++i) {
+            for (std::size_t j = i + 1; j < rects.size(); ++j) {
+                if (!overlaps(rects[i], rects[j])) continue;
+                rects[i] = unite(rects[i], rects[j]);
+                rects.erase(rects.begin() + std::ptrdiff_t(j));
+                merged = true;
+                break;
+            }
+        }
+    }
+}
+
 }  // namespace
 
 // One evaluation state: the last candidate's composite and incremental metrics.
@@ -71,6 +96,7 @@ struct LayerEvaluator::State {
             if (!rect.empty()) dirty.push_back(rect);
         }
         if (dirty.empty()) return;
+        mergeOverlapping(dirty);
         std::uint64_t area = 0;
         for (const renderer::PixelRect& rect : dirty) {
             renderer::compositeRect(layers, rect, setup.clearColor(), frame);

@@ -3,8 +3,9 @@
 //
 // The state starts as "candidate = all-black gray, nothing counted": histograms hold every
 // pixel in bin 0, classes and counts are 0, maps are 0. That state is consistent, so the
-// constructor's setCandidate(reference) and every later setCandidate are plain updateRect
-// calls over the whole image: one code path for full and incremental evaluation.
+// constructor's setCandidate(reference) and every later setCandidate are updates of the
+// whole image rectangle: one code path for full and incremental evaluation (a whole-image
+// update restarts the integer counts instead of subtracting each old pixel first).
 #include "metrics/incremental_evaluator.hpp"
 
 #include <algorithm>

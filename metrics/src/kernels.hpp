@@ -89,9 +89,10 @@ private:
 // --- SSIM ---------------------------------------------------------------------------------
 
 // Processing block of the separable filter: at most kSsimBlockRows map rows by
-// kSsimBlockColumns map columns, so the horizontal pass stays in L2 whatever the image width.
+// kSsimBlockColumns map columns. The vertical pass reads window rows of three quantities:
+// 11 x 3 x 128 doubles = 33 KiB stay in a 48 KiB L1 (256 columns measured slower).
 constexpr int kSsimBlockRows = 64;
-constexpr int kSsimBlockColumns = 256;
+constexpr int kSsimBlockColumns = 128;
 // Windows are compared with the reference in cells of kSsimBlockRows x kSsimCellColumns.
 constexpr int kSsimCellColumns = 64;
 constexpr int kSsimMaxWindow = 63;

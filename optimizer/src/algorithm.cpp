@@ -48,15 +48,22 @@ void Termination::validate() const {
     }
 }
 
-bool Termination::guaranteesStop() const { return maxIterations > 0 || stableIterations > 0 || maxSeconds > 0.0; }
+bool Termination::guaranteesStop() const {
+    return maxIterations > 0 || stableIterations > 0 || maxSeconds > 0.0;
+}
 
 std::string_view toString(StopReason reason) {
     switch (reason) {
-        case StopReason::Completed: return "completed";
-        case StopReason::MaxIterations: return "max-iterations";
-        case StopReason::Stable: return "stable";
-        case StopReason::MaxEvaluations: return "max-evaluations";
-        case StopReason::WallTime: return "wall-time";
+        case StopReason::Completed:
+            return "completed";
+        case StopReason::MaxIterations:
+            return "max-iterations";
+        case StopReason::Stable:
+            return "stable";
+        case StopReason::MaxEvaluations:
+            return "max-evaluations";
+        case StopReason::WallTime:
+            return "wall-time";
     }
     return "unknown";
 }
@@ -68,7 +75,7 @@ bool isBetter(double fitnessA, double msA, const Combination& a, double fitnessB
 }
 
 const std::vector<std::string>& algorithmNames() {
-    static const std::vector<std::string> names = {"gapso",      "pso",  "ga",         "greedy", "distance",
+    static const std::vector<std::string> names = {"gapso",      "pso",        "ga",   "greedy",     "distance",
                                                    "importance", "screensize", "mckp", "exhaustive", "random"};
     return names;
 }

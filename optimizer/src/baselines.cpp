@@ -79,8 +79,7 @@ Result Greedy::run(const Problem& problem, const Termination& termination) const
                                                    surrogate[variable][static_cast<std::size_t>(steps[k][variable])]
                                              : scores[k].fitness - currentFitness;
             if (!(gain > 0.0)) continue;
-            const double ratio =
-                stepExtraMs[k] > 0.0 ? gain / stepExtraMs[k] : std::numeric_limits<double>::infinity();
+            const double ratio = stepExtraMs[k] > 0.0 ? gain / stepExtraMs[k] : std::numeric_limits<double>::infinity();
             if (chosen < 0 || ratio > chosenRatio || (ratio == chosenRatio && gain > chosenGain)) {
                 chosen = static_cast<int>(k);
                 chosenGain = gain;
@@ -167,8 +166,8 @@ Result Exhaustive::run(const Problem& problem, const Termination& termination) c
 
 RandomSearch::RandomSearch(RandomSearchParameters parameters) : mParameters(parameters) {
     if (mParameters.samplesPerIteration < 1) {
-        throw std::invalid_argument("random: samplesPerIteration = " +
-                                    std::to_string(mParameters.samplesPerIteration) + ", must be >= 1");
+        throw std::invalid_argument("random: samplesPerIteration = " + std::to_string(mParameters.samplesPerIteration) +
+                                    ", must be >= 1");
     }
 }
 
@@ -181,7 +180,8 @@ Result RandomSearch::run(const Problem& problem, const Termination& termination)
     std::vector<double> predictedMs(count);
     do {
         for (Combination& combination : batch) {
-            for (std::size_t i = 0; i < combination.size(); ++i) combination[i] = random.belowInt(problem.levelCounts[i]);
+            for (std::size_t i = 0; i < combination.size(); ++i)
+                combination[i] = random.belowInt(problem.levelCounts[i]);
             repairToBudget(problem, combination);
         }
         const std::size_t scored = state.evaluate(batch, scores, predictedMs);

@@ -17,8 +17,8 @@ void checkScore(const Score& score, const Combination& combination) {
     }
     if (score.componentCount < 0 || score.componentCount > static_cast<int>(Score::kMaxComponents)) {
         throw EvaluationError("the evaluator returned " + std::to_string(score.componentCount) +
-                              " score components for combination " + formatCombination(combination) +
-                              " (at most " + std::to_string(Score::kMaxComponents) + ")");
+                              " score components for combination " + formatCombination(combination) + " (at most " +
+                              std::to_string(Score::kMaxComponents) + ")");
     }
     for (int c = 0; c < score.componentCount; ++c) {
         if (!std::isfinite(score.components[static_cast<std::size_t>(c)])) {

@@ -47,8 +47,8 @@ void select(std::vector<Particle>& swarm, double keep, Random& random) {
     std::vector<double> weights(count);
     rouletteWeights(fitness, weights);
 
-    const auto keepCount = std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(keep * static_cast<double>(count))),
-                                                   1, count);
+    const auto keepCount =
+        std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(keep * static_cast<double>(count))), 1, count);
     std::vector<double> work = weights;
     std::vector<bool> taken(count, false);
     std::vector<std::size_t> kept;
@@ -204,7 +204,8 @@ Result Gapso::run(const Problem& problem, const Termination& termination) const 
         try {
             validateCombination(problem, p.initialCombinations[k]);
         } catch (const ProblemError& error) {
-            throw ProblemError(std::string(name()) + ": initialCombinations[" + std::to_string(k) + "]: " + error.what());
+            throw ProblemError(std::string(name()) + ": initialCombinations[" + std::to_string(k) +
+                               "]: " + error.what());
         }
     }
     const std::span<const int> levelCounts = problem.levelCounts;
@@ -224,8 +225,8 @@ Result Gapso::run(const Problem& problem, const Termination& termination) const 
         particle.position.resize(variables);
         particle.velocity.resize(variables);
         for (std::size_t i = 0; i < variables; ++i) {
-            particle.position[i] = k < p.initialCombinations.size() ? p.initialCombinations[k][i]
-                                                                    : random.belowInt(levelCounts[i]);
+            particle.position[i] =
+                k < p.initialCombinations.size() ? p.initialCombinations[k][i] : random.belowInt(levelCounts[i]);
             particle.velocity[i] = random.uniform(-maxVelocity[i], maxVelocity[i]);
         }
     }

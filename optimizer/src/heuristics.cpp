@@ -95,9 +95,9 @@ Combination distanceLevels(const Problem& problem, const DistanceParameters& par
         int level = 0;
         if (!parameters.thresholds.empty()) {
             // Eq. (4): level k when d_k <= d < d_{k+1}.
-            level = static_cast<int>(std::upper_bound(parameters.thresholds.begin(), parameters.thresholds.end(),
-                                                      distance[i]) -
-                                     parameters.thresholds.begin());
+            level = static_cast<int>(
+                std::upper_bound(parameters.thresholds.begin(), parameters.thresholds.end(), distance[i]) -
+                parameters.thresholds.begin());
         } else if (*highest > *lowest) {
             const double t = (distance[i] - *lowest) / (*highest - *lowest);
             level = static_cast<int>(std::floor(t * problem.levelCounts[i]));
@@ -179,18 +179,15 @@ Result ImportanceHeuristic::run(const Problem& problem, const Termination& termi
     // Increasing importance: objects with I <= 1 come first, so those with I > 1 are lowered
     // only when lowering every other object to its coarsest level was not enough.
     const std::vector<std::size_t> increasing = orderBy(importanceOf);
-    double ms = problem.cost->predictMs(combination);
-    if (ms <= problem.budgetMs) {
+    if (problem.cost->predictMs(combination) <= problem.budgetMs) {
         for (auto it = increasing.rbegin(); it != increasing.rend(); ++it) {
             const std::size_t i = *it;
             while (combination[i] > 0) {
                 --combination[i];
-                const double raisedMs = problem.cost->predictMs(combination);
-                if (raisedMs > problem.budgetMs) {
+                if (problem.cost->predictMs(combination) > problem.budgetMs) {
                     ++combination[i];  // this object's next step does not fit; try the next object
                     break;
                 }
-                ms = raisedMs;
             }
         }
     } else {
@@ -203,8 +200,7 @@ Combination screenSizeLevels(const Problem& problem, const ScreenSizeParameters&
     const std::size_t variables = problem.levelCounts.size();
     Combination combination(variables, 0);
     for (std::size_t i = 0; i < variables; ++i) {
-        const double coverage =
-            requireHint(problem, i, "screensize", "screenCoverage", &VariableHints::screenCoverage);
+        const double coverage = requireHint(problem, i, "screensize", "screenCoverage", &VariableHints::screenCoverage);
         const VariableHints& hints = problem.hints[i];
         const int levels = problem.levelCounts[i];
         int level = 0;

@@ -23,8 +23,8 @@ void validateLevelTable(const std::vector<std::vector<double>>& table, std::span
     for (std::size_t i = 0; i < table.size(); ++i) {
         if (table[i].size() != static_cast<std::size_t>(levelCounts[i])) {
             throw ProblemError(std::string(name) + "[" + std::to_string(i) + "] has " +
-                               std::to_string(table[i].size()) + " entries, variable " + std::to_string(i) +
-                               " has " + std::to_string(levelCounts[i]) + " levels");
+                               std::to_string(table[i].size()) + " entries, variable " + std::to_string(i) + " has " +
+                               std::to_string(levelCounts[i]) + " levels");
         }
         for (std::size_t l = 0; l < table[i].size(); ++l) {
             if (!std::isfinite(table[i][l])) {
@@ -60,8 +60,8 @@ void validateHints(const VariableHints& hints, std::size_t variable, int levelCo
         }
         for (std::size_t l = 0; l < values.size(); ++l) {
             if (!std::isfinite(values[l]) || values[l] < 0.0) {
-                throw ProblemError(where + "." + field + "[" + std::to_string(l) + "] = " +
-                                   std::to_string(values[l]) + ", must be finite and >= 0");
+                throw ProblemError(where + "." + field + "[" + std::to_string(l) + "] = " + std::to_string(values[l]) +
+                                   ", must be finite and >= 0");
             }
         }
     };
@@ -69,8 +69,8 @@ void validateHints(const VariableHints& hints, std::size_t variable, int levelCo
     checkPerLevel(hints.levelPixelError, "levelPixelError");
     for (std::size_t l = 1; l < hints.levelScreenCoverage.size(); ++l) {
         if (hints.levelScreenCoverage[l] > hints.levelScreenCoverage[l - 1]) {
-            throw ProblemError(where + ".levelScreenCoverage[" + std::to_string(l) + "] = " +
-                               std::to_string(hints.levelScreenCoverage[l]) +
+            throw ProblemError(where + ".levelScreenCoverage[" + std::to_string(l) +
+                               "] = " + std::to_string(hints.levelScreenCoverage[l]) +
                                " is above the previous level's threshold (must be non-increasing)");
         }
     }
@@ -79,8 +79,10 @@ void validateHints(const VariableHints& hints, std::size_t variable, int levelCo
 }  // namespace
 
 BudgetError::BudgetError(double budgetMs, double minimumMs)
-    : ProblemError("budget " + formatMs(budgetMs) + " is below the cheapest combination (every object at its "
-                   "coarsest level), which is predicted at " + formatMs(minimumMs)),
+    : ProblemError("budget " + formatMs(budgetMs) +
+                   " is below the cheapest combination (every object at its "
+                   "coarsest level), which is predicted at " +
+                   formatMs(minimumMs)),
       mBudgetMs(budgetMs),
       mMinimumMs(minimumMs) {}
 
@@ -124,7 +126,8 @@ double AdditiveCost::predictMs(const Combination& combination) const {
 
 double AdditiveCost::deltaMs(const Combination& combination, int variable, int newLevel) const {
     const auto& row = mLevelMs[static_cast<std::size_t>(variable)];
-    return row[static_cast<std::size_t>(newLevel)] - row[static_cast<std::size_t>(combination[static_cast<std::size_t>(variable)])];
+    return row[static_cast<std::size_t>(newLevel)] -
+           row[static_cast<std::size_t>(combination[static_cast<std::size_t>(variable)])];
 }
 
 void validateProblem(const Problem& problem) {
@@ -177,7 +180,9 @@ void validateCombination(const Problem& problem, const Combination& combination)
     validateCombination(problem.levelCounts, combination);
 }
 
-Combination finestCombination(const Problem& problem) { return Combination(problem.levelCounts.size(), 0); }
+Combination finestCombination(const Problem& problem) {
+    return Combination(problem.levelCounts.size(), 0);
+}
 
 Combination coarsestCombination(const Problem& problem) {
     Combination combination(problem.levelCounts.size());

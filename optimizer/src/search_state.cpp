@@ -25,9 +25,10 @@ SearchState::SearchState(const Problem& problem, const Termination& termination,
       mEvaluator(validated(problem, termination), termination.maxEvaluations),
       mStart(std::chrono::steady_clock::now()) {
     if (iterative && !termination.guaranteesStop()) {
-        throw std::invalid_argument(mAlgorithm +
-                                    ": the termination needs maxIterations, stableIterations or maxSeconds (maxEvaluations "
-                                    "alone may never be reached: a converged search only hits the cache)");
+        throw std::invalid_argument(
+            mAlgorithm +
+            ": the termination needs maxIterations, stableIterations or maxSeconds (maxEvaluations "
+            "alone may never be reached: a converged search only hits the cache)");
     }
 }
 

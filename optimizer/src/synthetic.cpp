@@ -27,35 +27,37 @@ InteractionEvaluator::InteractionEvaluator(std::vector<std::vector<double>> degr
                                            std::vector<Pair> pairs)
     : mDegradation(std::move(degradation)), mWeights(std::move(weights)), mPairs(std::move(pairs)) {}
 
+double InteractionEvaluator::degradationAt(std::size_t variable, const Combination& combination) const {
+    return mDegradation[variable][static_cast<std::size_t>(combination[variable])];
+}
+
+double InteractionEvaluator::additiveLoss(const Combination& combination) const {
+    double loss = 0.0;
+    for (std::size_t i = 0; i < combination.size(); ++i) loss += mWeights[i] * degradationAt(i, combination);
+    return loss;
+}
+
 double InteractionEvaluator::fitness(const Combination& combination) const {
-    double additive = 0.0;
-    for (std::size_t i = 0; i < combination.size(); ++i) {
-        additive += mWeights[i] * mDegradation[i][static_cast<std::size_t>(combination[i])];
-    }
     double interaction = 0.0;
     for (const Pair& pair : mPairs) {
-        interaction += pair.weight * mDegradation[static_cast<std::size_t>(pair.a)][static_cast<std::size_t>(combination[static_cast<std::size_t>(pair.a)])] *
-                       mDegradation[static_cast<std::size_t>(pair.b)][static_cast<std::size_t>(combination[static_cast<std::size_t>(pair.b)])];
+        interaction += pair.weight * degradationAt(pair.a, combination) * degradationAt(pair.b, combination);
     }
-    return std::clamp(1.0 - additive - interaction, 0.0, 1.0);
+    return std::clamp(1.0 - additiveLoss(combination) - interaction, 0.0, 1.0);
 }
 
 Score InteractionEvaluator::evaluate(const Combination& combination) {
     Score score;
     score.fitness = fitness(combination);
-    double additive = 0.0;
-    for (std::size_t i = 0; i < combination.size(); ++i) {
-        additive += mWeights[i] * mDegradation[i][static_cast<std::size_t>(combination[i])];
-    }
-    score.components[0] = additive;
-    score.components[1] = 1.0 - additive - score.fitness;
+    score.components[0] = additiveLoss(combination);
+    score.components[1] = 1.0 - score.components[0] - score.fitness;
     score.componentCount = 2;
     return score;
 }
 
 SyntheticProblem::SyntheticProblem(const SyntheticParameters& parameters) {
     const SyntheticParameters& p = parameters;
-    if (p.variables < 1) throw std::invalid_argument("synthetic: variables = " + std::to_string(p.variables) + ", must be >= 1");
+    if (p.variables < 1)
+        throw std::invalid_argument("synthetic: variables = " + std::to_string(p.variables) + ", must be >= 1");
     if (p.minLevels < 1 || p.maxLevels < p.minLevels) {
         throw std::invalid_argument("synthetic: levels " + std::to_string(p.minLevels) + ".." +
                                     std::to_string(p.maxLevels) + ", need 1 <= minLevels <= maxLevels");
@@ -78,7 +80,8 @@ SyntheticProblem::SyntheticProblem(const SyntheticParameters& parameters) {
         const double exponent = random.uniform(0.7, 2.0);
         degradation[i].resize(static_cast<std::size_t>(levels));
         for (int l = 0; l < levels; ++l) {
-            degradation[i][static_cast<std::size_t>(l)] = levels == 1 ? 0.0 : std::pow(double(l) / (levels - 1), exponent);
+            degradation[i][static_cast<std::size_t>(l)] =
+                levels == 1 ? 0.0 : std::pow(double(l) / (levels - 1), exponent);
         }
         // Visibility spans two orders of magnitude, like near and far objects.
         weights[i] = logUniform(random, 0.01, 1.0);
@@ -92,8 +95,8 @@ SyntheticProblem::SyntheticProblem(const SyntheticParameters& parameters) {
 
     std::vector<InteractionEvaluator::Pair> pairs;
     double pairSum = 0.0;
-    for (int a = 0; a < p.variables; ++a) {
-        for (int b = a + 1; b < p.variables; ++b) {
+    for (std::size_t a = 0; a < variables; ++a) {
+        for (std::size_t b = a + 1; b < variables; ++b) {
             if (!random.chance(p.pairDensity)) continue;
             const double sign = random.chance(p.negativeFraction) ? -1.0 : 1.0;
             const double magnitude = random.uniform(0.2, 1.0);

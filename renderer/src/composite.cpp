@@ -1,6 +1,7 @@
 // Rebuilding a frame from per-object layers by nearest depth.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "renderer/renderer.hpp"
 
@@ -32,17 +33,27 @@ void clearRect(PixelRect rect, glm::vec4 clearColor, Frame& out) {
 void applyLayer(const Layer& layer, PixelRect rect, Frame& out) {
     const int x0 = std::max(rect.x0, layer.rect.x0), x1 = std::min(rect.x1, layer.rect.x1);
     const int y0 = std::max(rect.y0, layer.rect.y0), y1 = std::min(rect.y1, layer.rect.y1);
+    if (x0 >= x1 || y0 >= y1) return;
     const int layerWidth = layer.rect.width();
+    const int count = x1 - x0;
     for (int y = y0; y < y1; ++y) {
-        const std::size_t layerRow = std::size_t(y - layer.rect.y0) * layerWidth;
-        const std::size_t frameRow = std::size_t(y) * out.width;
-        for (int x = x0; x < x1; ++x) {
-            const std::size_t l = layerRow + (x - layer.rect.x0);
-            const std::size_t f = frameRow + x;
-            if (layer.depth[l] < out.depth[f]) {
-                out.depth[f] = layer.depth[l];
-                std::copy_n(&layer.rgba[l * 4], 4, &out.rgba[f * 4]);
+        const std::size_t l = std::size_t(y - layer.rect.y0) * layerWidth + (x0 - layer.rect.x0);
+        const std::size_t f = std::size_t(y) * out.width + x0;
+        const float* layerDepth = &layer.depth[l];
+        float* frameDepth = &out.depth[f];
+        // Whole RGBA8 pixels as 32-bit words: a select per pixel that the compiler vectorizes.
+        std::uint32_t layerColor[512];
+        std::uint32_t frameColor[512];
+        for (int start = 0; start < count; start += 512) {
+            const int n = std::min(512, count - start);
+            std::memcpy(layerColor, &layer.rgba[(l + start) * 4], std::size_t(n) * 4);
+            std::memcpy(frameColor, &out.rgba[(f + start) * 4], std::size_t(n) * 4);
+            for (int x = 0; x < n; ++x) {
+                const bool nearer = layerDepth[start + x] < frameDepth[start + x];
+                frameDepth[start + x] = nearer ? layerDepth[start + x] : frameDepth[start + x];
+                frameColor[x] = nearer ? layerColor[x] : frameColor[x];
             }
+            std::memcpy(&out.rgba[(f + start) * 4], frameColor, std::size_t(n) * 4);
         }
     }
 }

@@ -1,4 +1,4 @@
-// The built-in city: about 1,400 buildings with three LODs each (city_building.hpp) on a
+// The built-in city: about 1,250 buildings with three LODs each (city_building.hpp) on a
 // 12 x 12 grid of blocks, with a ground object, street-level and aerial viewpoints and a
 // fly-through path (the urban scenes of CITY17 and HYBRID14, scaled to a software renderer).
 //
@@ -8,13 +8,13 @@
 //  - ground: asphalt under the grid, block plinths with curbs (paving, or lawn for parks),
 //    avenue centre lines, and open land out to 2 km; a second level without curbs and lines;
 //  - parks: 4-6 blocks away from the avenues are lawns without buildings;
-//  - lots: each block has two rows of 4-6 lots (so >= 8 buildings a block and >= 1,104 in
+//  - lots: each block has two rows of 4-5 lots (so >= 8 buildings a block and >= 1,104 in
 //    all); a building fills its lot's frontage less a gap and 11-17 m of its depth;
 //  - heights: storeys ~ 2 + 28 exp(-(r / 0.3)^2) with r the distance from the centre over
 //    450 m, times a random 0.6-1.4, and a few towers; low buildings (<= 5 storeys) get gable
 //    or hip roofs 60% of the time, the rest flat roofs with parapets;
-//  - palettes: six wall tints; each tint has its own wall, window, facade and small facade
-//    materials (the textures are shared).
+//  - palettes: six wall tints; each tint has its own wall (plaster and windows), facade and small
+//    facade materials (the textures are shared).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -96,8 +96,7 @@ CityMaterials addCityMaterials(Scene& scene, std::uint32_t seed) {
         scene.materials.push_back({std::move(name), glm::vec4(color, 1.0f), texture});
         return int(scene.materials.size() - 1);
     };
-    const int wall = addTexture(procedural::makeWallTexture("wall", 64, seed));
-    const int window = addTexture(procedural::makeWindowTexture("window_bay", 64, seed + 1u));
+    const int wall = addTexture(procedural::makePlasterAndWindowTexture("plaster_window_bay", 64, seed));
     const int facade = addTexture(procedural::makeFacadeTexture("facade_bay", 64, seed + 2u));
     const int facadeSmall = addTexture(procedural::makeFacadeTexture("facade_bay_small", 16, seed + 2u));
     const int gravel = addTexture(procedural::makeGravelTexture("roof_gravel", 64, seed + 3u));
@@ -114,7 +113,6 @@ CityMaterials addCityMaterials(Scene& scene, std::uint32_t seed) {
         };
         city::BuildingMaterials b;
         b.wall = addMaterial(named("wall"), kTints[t], wall);
-        b.window = addMaterial(named("window"), kTints[t], window);
         b.facade = addMaterial(named("facade"), kTints[t], facade);
         b.facadeSmall = addMaterial(named("facade_small"), kTints[t], facadeSmall);
         b.roof = roofFlat;
@@ -238,8 +236,8 @@ void fillBlock(glm::vec2 lo, glm::vec2 hi, Rng& rng, std::vector<Placed>& out) {
     const glm::vec2 inner0 = lo + glm::vec2(kSidewalk), inner1 = hi - glm::vec2(kSidewalk);
     const float rowDepth = 0.5f * (inner1.y - inner0.y);
     for (int row = 0; row < 2; ++row) {
-        const int lots = rng.uniformInt(4, 6);
-        std::array<float, 6> weight{};
+        const int lots = rng.uniformInt(4, 5);
+        std::array<float, 5> weight{};
         float sum = 0.0f;
         for (int k = 0; k < lots; ++k) sum += (weight[std::size_t(k)] = rng.uniform(0.6f, 1.4f));
         float x = inner0.x;
@@ -326,8 +324,8 @@ Scene makeCityScene(std::uint32_t seed) {
     scene.views.push_back(makeCamera("skyline", {60.0f, 25.0f, -gz.extent - 320.0f}, {0.0f, 40.0f, 0.0f}, 40.0f, 1.0f));
 
     // Fly-through: descend from the west onto the avenue, fly its length at about 30 m
-    // between the towers, climb away to the north over the east side, then circle west
-    // along the north edge looking at the centre.
+    // between the towers, climb away to the north over the east side and circle west along
+    // the north edge, looking at the centre from the end of the avenue on.
     const std::vector<glm::vec3> controls = {{-gx.extent - 160.0f, 140.0f, avenueZ - 180.0f},
                                              {-gx.extent - 30.0f, 60.0f, avenueZ - 20.0f},
                                              {-gx.extent + 60.0f, 32.0f, avenueZ},
@@ -341,32 +339,29 @@ Scene makeCityScene(std::uint32_t seed) {
     std::vector<glm::vec3> eyes = procedural::sampleSplineEvenly(controls, kFlyFrames);
     Camera lens = makeCamera("", {}, {}, 55.0f, 0.5f);
     CameraPath path = procedural::makeLookAheadPath("flythrough", kFlyFramesPerSecond, eyes, 30, 6.0f, lens);
-    // Looking straight ahead suits the avenue; climbing out it would see sky. After the
-    // avenue the camera turns (over 2 s) to look at the ground 120 m ahead, and once circling,
-    // at the centre. Each turn is under 120 degrees, so the blended direction never vanishes.
-    auto nearestFrame = [&](glm::vec3 point) {
-        std::size_t best = 0;
-        for (std::size_t i = 0; i < eyes.size(); ++i) {
-            if (glm::length(eyes[i] - point) < glm::length(eyes[best] - point)) best = i;
-        }
-        return best;
-    };
-    auto ramp = [&](std::size_t i, std::size_t from) {
-        float w = i < from ? 0.0f : std::min(float(i - from) / (2.0f * kFlyFramesPerSecond), 1.0f);
-        return w * w * (3.0f - 2.0f * w);
-    };
-    const std::size_t leaveAvenue = nearestFrame(controls[4]), startCircle = nearestFrame(controls[6]);
+    // Looking ahead suits the avenue, but climbing out of it the camera would see sky: the
+    // view never points above a downward slope that steepens with height (0.05 at 30 m, 0.25
+    // at 130 m), and from the avenue's east end the camera turns (over 3 s) to look at the
+    // centre. The turn is under 180 degrees, so the blended direction never vanishes.
+    std::size_t turn = 0;
+    for (std::size_t i = 0; i < eyes.size(); ++i) {
+        if (glm::length(eyes[i] - controls[5]) < glm::length(eyes[turn] - controls[5])) turn = i;
+    }
     const glm::vec3 downtown(0.0f, 30.0f, 0.0f);
-    for (std::size_t i = leaveAvenue; i < path.frames.size(); ++i) {
+    for (std::size_t i = 0; i < path.frames.size(); ++i) {
         Camera& frame = path.frames[i];
-        glm::vec3 ahead = glm::normalize(frame.target - frame.position);
-        glm::vec2 level = glm::normalize(glm::vec2(ahead.x, ahead.z) + glm::vec2(1e-6f, 0.0f));
-        glm::vec3 groundFocus =
-            glm::vec3(frame.position.x + 120.0f * level.x, 20.0f, frame.position.z + 120.0f * level.y);
-        glm::vec3 direction = glm::mix(ahead, glm::normalize(groundFocus - frame.position), ramp(i, leaveAvenue));
-        direction =
-            glm::mix(glm::normalize(direction), glm::normalize(downtown - frame.position), ramp(i, startCircle));
-        frame.target = frame.position + 100.0f * glm::normalize(direction);
+        glm::vec3 direction = glm::normalize(frame.target - frame.position);
+        if (i >= turn) {
+            float w = std::min(float(i - turn) / (3.0f * kFlyFramesPerSecond), 1.0f);
+            w = w * w * (3.0f - 2.0f * w);
+            direction = glm::normalize(glm::mix(direction, glm::normalize(downtown - frame.position), w));
+        }
+        float maxSlope = -0.05f - 0.002f * std::max(frame.position.y - 30.0f, 0.0f);
+        glm::vec2 level(direction.x, direction.z);
+        if (direction.y / std::max(glm::length(level), 1e-3f) > maxSlope) {
+            direction = glm::normalize(glm::vec3(level.x, maxSlope * glm::length(level), level.y));
+        }
+        frame.target = frame.position + 100.0f * direction;
     }
     scene.paths.push_back(std::move(path));
 

@@ -1,11 +1,12 @@
 // Procedural buildings with three discrete levels of detail for the built-in city scene
 // (the three-level building LODs of CITY17 and HYBRID14: detailed model → block → box).
 //
-//   level 0: modelled facade. Each storey is a flush spandrel (wall) below a ribbon of
+//   level 0: modelled facade. Each storey is a flush spandrel (plaster) below a ribbon of
 //            windows recessed kWindowRecess into the facade, with sill and head reveals;
-//            the window texture repeats once per bay. A flat roof gets a cornice, a
-//            parapet, a gravel slab and a rooftop plant room; a gable or hip roof gets
-//            eaves, gable walls and a chimney. Three draw calls: wall, windows, roof.
+//            the window bay repeats once per bay. A flat roof gets a cornice, a parapet, a
+//            gravel slab and a rooftop plant room; a gable or hip roof gets eaves, gable
+//            walls and a chimney. Two draw calls: walls with windows (one texture holding
+//            plaster and the window bay), roof.
 //   level 1: block with roof. Four walls painted with a facade texture (one window per
 //            bay and storey, aligned with level 0's bays), and the roof simplified (gable
 //            and hip keep their planes, flat keeps the slab and the plant room). Two draw
@@ -46,8 +47,7 @@ float wallHeight(const BuildingSpec& spec);
 
 // Materials a building's levels draw with (indices into Scene::materials).
 struct BuildingMaterials {
-    int wall = -1;         // level 0 walls, reveals, cornice, parapet (wall texture)
-    int window = -1;       // level 0 window ribbons (window bay texture)
+    int wall = -1;         // level 0 walls, windows, reveals, cornice, parapet (plaster + window bay)
     int roof = -1;         // levels 0-1 roof surfaces (gravel or tiles)
     int facade = -1;       // level 1 walls (facade bay texture)
     int facadeSmall = -1;  // level 2 (16x16 facade bay texture)

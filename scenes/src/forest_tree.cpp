@@ -125,13 +125,16 @@ struct SpeciesShape {
 };
 
 SpeciesShape shapeOf(Species species) {
+    // Fields in declaration order: height range, trunk radius / height, crown base, trunk top,
+    // crown radius / height, conifer, order-1 count range, per whorl, elevation range,
+    // secondaries, tertiaries, leaf cards, leaf length and width.
     switch (species) {
         case Species::Oak:
-            return {8.0f, 13.0f, 0.030f, 0.30f, 0.72f, 0.42f, false, 8, 11, 1, 15.0f, 55.0f, 3, 2, 1300, 0.85f, 0.56f};
+            return {8.0f, 13.0f, 0.030f, 0.30f, 0.72f, 0.42f, false, 8, 11, 1, 15.0f, 55.0f, 3, 2, 1050, 0.92f, 0.60f};
         case Species::Pine:
-            return {12.0f, 18.0f, 0.024f, 0.28f, 1.0f, 0.20f, true, 11, 14, 5, -15.0f, 12.0f, 2, 0, 1050, 0.80f, 0.34f};
+            return {12.0f, 18.0f, 0.024f, 0.28f, 1.0f, 0.20f, true, 11, 14, 5, -15.0f, 12.0f, 2, 0, 850, 0.88f, 0.37f};
         case Species::Birch:
-            return {10.0f, 15.0f, 0.018f, 0.38f, 0.92f, 0.19f, false, 7, 10, 1, 45.0f, 70.0f, 3, 2, 1100, 0.55f, 0.36f};
+            return {10.0f, 15.0f, 0.018f, 0.38f, 0.92f, 0.19f, false, 7, 10, 1, 45.0f, 70.0f, 3, 2, 900, 0.60f, 0.40f};
     }
     return shapeOf(Species::Oak);
 }

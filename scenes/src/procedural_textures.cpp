@@ -68,13 +68,6 @@ Texture makeGrassTexture(std::string name, int size, std::uint32_t seed) {
     });
 }
 
-Texture makeWallTexture(std::string name, int size, std::uint32_t seed) {
-    return makeTexture(std::move(name), size, size, [=](float u, float v) {
-        float n = fractalNoise(u * 8.0f, v * 8.0f, 8, 8, 3, seed);
-        return glm::vec3(0.80f + 0.15f * n);
-    });
-}
-
 namespace {
 
 // Window pane: glass with a sky reflection gradient and a light frame.
@@ -86,12 +79,18 @@ glm::vec3 glass(float u, float v, std::uint32_t seed) {
 
 }  // namespace
 
-Texture makeWindowTexture(std::string name, int size, std::uint32_t seed) {
-    return makeTexture(std::move(name), size, size, [=](float u, float v) {
+Texture makePlasterAndWindowTexture(std::string name, int size, std::uint32_t seed) {
+    return makeTexture(std::move(name), size, 2 * size, [=](float u, float v) {
+        if (v < 0.5f) {
+            // Plaster: noise that tiles along u; the v range is stretched over each piece.
+            float n = fractalNoise(u * 8.0f, v * 16.0f, 8, 8, 3, seed);
+            return glm::vec3(0.80f + 0.15f * n);
+        }
+        // One window bay: piers at both sides, a frame, a transom and a mullion.
+        v = 2.0f * (v - 0.5f);
         const glm::vec3 pier(0.86f), frame(0.93f);
         if (u < 0.12f || u > 0.88f) return pier * (0.92f + 0.08f * valueNoise(u * 8, v * 8, 8, 8, seed));
         if (u < 0.16f || u > 0.84f || v < 0.06f || v > 0.94f) return frame;
-        // A transom splits the pane.
         if (std::abs(v - 0.72f) < 0.025f || std::abs(u - 0.5f) < 0.015f) return frame;
         return glass(u, v, seed + 5u);
     });

@@ -21,11 +21,11 @@ Texture makeFoliageTexture(std::string name, int size, glm::vec3 color, std::uin
 // Grass with bare patches; `size` texels cover one uv repeat.
 Texture makeGrassTexture(std::string name, int size, std::uint32_t seed);
 
-// Plaster/concrete: light grey noise, tinted by the material's base colour.
-Texture makeWallTexture(std::string name, int size, std::uint32_t seed);
-// One window bay of a recessed ribbon: a glass pane (v = 0 sill, v = 1 head) in a frame with
-// a pier on each side, repeated once per bay along u.
-Texture makeWindowTexture(std::string name, int size, std::uint32_t seed);
+// Level 0 of a building in one texture (size x 2 size): plaster in v in [0, 0.5) (light
+// grey noise, tinted by the material, tiling along u) and one window bay of a recessed
+// ribbon in [0.5, 1): a glass pane (sill at v = 0.5, head at v = 1) in a frame with a pier
+// on each side, tiling along u once per bay.
+Texture makePlasterAndWindowTexture(std::string name, int size, std::uint32_t seed);
 // One facade bay (one window in its share of wall, one floor high): what level 1 and 2 of a
 // building paint instead of modelling. Texel (0.02, 0.02) is wall: coarse roofs sample it.
 Texture makeFacadeTexture(std::string name, int size, std::uint32_t seed);

@@ -10,8 +10,8 @@
 namespace lodopt::optimizer {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::HandProblem;
+using ::testing::HasSubstr;
 using testing::TableEvaluator;
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
@@ -184,6 +184,40 @@ TEST(Mckp, IsOptimalOnAnAdditiveProblemLikeExhaustive) {
     }
 }
 
+TEST(Mckp, EqualsExhaustiveExactlyOnAdditiveProblemsWithWholeMillisecondCosts) {
+    Random random(5);
+    for (int trial = 0; trial < 30; ++trial) {
+        const int variables = 2 + random.belowInt(4);
+        std::vector<std::vector<double>> loss(variables);
+        std::vector<std::vector<double>> levelMs(variables);
+        std::vector<int> levels(variables);
+        for (int i = 0; i < variables; ++i) {
+            levels[i] = 1 + random.belowInt(5);
+            double ms = 1.0 + random.belowInt(3);
+            for (int l = levels[i] - 1; l >= 0; --l) {  // finer levels cost more
+                levelMs[i].insert(levelMs[i].begin(), ms);
+                ms += random.belowInt(4);
+            }
+            for (int l = 0; l < levels[i]; ++l) loss[i].push_back(l == 0 ? 0.0 : random.belowInt(40) / 128.0);
+        }
+        TableEvaluator evaluator(loss);
+        const AdditiveCost cost(0.0, levelMs);
+        Problem problem;
+        problem.levelCounts = levels;
+        problem.evaluator = &evaluator;
+        problem.cost = &cost;
+        const double minimum = cost.predictMs(coarsestCombination(problem));
+        const double maximum = cost.predictMs(finestCombination(problem));
+        const int slack = random.belowInt(static_cast<int>(maximum - minimum) + 1);
+        problem.budgetMs = minimum + slack;
+        // One bucket per ms of slack: every cost delta is a whole number of buckets.
+        const Result mckp = Mckp(MckpParameters{std::max(1, slack)}).run(problem, Termination::none());
+        const Result truth = Exhaustive().run(problem, Termination::none());
+        EXPECT_EQ(mckp.bestScore.fitness, truth.bestScore.fitness) << "trial " << trial;
+        EXPECT_LE(mckp.predictedMs, problem.budgetMs) << "trial " << trial;
+    }
+}
+
 TEST(Mckp, HandProblemWithTableNeedsOneEvaluation) {
     HandProblem hand;
     Problem problem = hand.problem();
@@ -297,7 +331,7 @@ TEST(ScreenSize, UsesCoverageThresholdsOrPixelErrorThenLowersSmallestFirst) {
     Problem problem = hints.problem(12.0);
     problem.hints[0].levelScreenCoverage = {0.5, 0.2, 0.0};  // 0.6 → level 0
     problem.hints[1].levelScreenCoverage = {0.5, 0.2, 0.0};  // 0.3 → level 1
-    problem.hints[2].levelPixelError = {0.0, 0.8, 3.0};     // tolerance 1 px → level 1
+    problem.hints[2].levelPixelError = {0.0, 0.8, 3.0};      // tolerance 1 px → level 1
     EXPECT_EQ(screenSizeLevels(problem, ScreenSizeParameters{}), (Combination{0, 1, 1}));
     EXPECT_EQ(ScreenSizeHeuristic().run(problem, Termination::none()).best, (Combination{0, 1, 1}));
     problem.budgetMs = 6.0;  // 8 ms → lower the smallest (far, to 2: 7 ms), then middle (6 ms)

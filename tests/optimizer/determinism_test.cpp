@@ -3,13 +3,16 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "fixtures.hpp"
 
 namespace lodopt::optimizer {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::FormulaEvaluator;
+using ::testing::HasSubstr;
 using testing::sameLog;
 using testing::ThreadPoolEvaluator;
 
@@ -193,6 +196,66 @@ TEST(Algorithms, AllEqualFitnessBreaksTiesByTimeThenOrder) {
     EXPECT_TRUE(isBetter(0.5, 2.0, {0, 1}, 0.5, 2.0, {1, 0}));
     EXPECT_FALSE(isBetter(0.5, 2.0, {1, 0}, 0.5, 2.0, {1, 0}));
     EXPECT_TRUE(isBetter(0.6, 9.0, {1, 1}, 0.5, 2.0, {0, 0}));
+}
+
+TEST(Algorithms, UnlimitedBudgetLetsTheExactOnesTakeTheReference) {
+    SyntheticProblem synthetic(smallSynthetic(6, 1.0));
+    Problem problem = synthetic.problem();
+    problem.budgetMs = std::numeric_limits<double>::infinity();
+    const Combination finest = finestCombination(problem);
+    EXPECT_EQ(Exhaustive().run(problem, Termination::none()).best, finest);
+    EXPECT_EQ(Mckp().run(problem, Termination::none()).best, finest);
+    EXPECT_EQ(Greedy().run(problem, Termination::none()).best, finest);
+    for (const std::string& name : algorithmNames()) {
+        const Result result = makeAlgorithm(name)->run(problem, shortRun());
+        EXPECT_TRUE(std::isfinite(result.predictedMs)) << name;
+    }
+}
+
+TEST(Algorithms, ANonFiniteCostPredictionIsAClearError) {
+    testing::FormulaEvaluator evaluator([](const Combination&) { return 0.5; });
+    class BrokenCost final : public Cost {
+    public:
+        double predictMs(const Combination& c) const override { return c[0] == 0 ? std::nan("") : 1.0; }
+    } cost;
+    Problem problem;
+    problem.levelCounts = {2};
+    problem.evaluator = &evaluator;
+    problem.cost = &cost;
+    problem.budgetMs = 2.0;
+    Combination finest{0};
+    try {
+        repairToBudget(problem, finest);
+        FAIL() << "expected ProblemError";
+    } catch (const ProblemError& error) {
+        EXPECT_THAT(error.what(), HasSubstr("[0]"));
+    }
+}
+
+TEST(Termination, ValidationNamesTheFieldAndReasonsHaveNames) {
+    auto messageFor = [](auto change) {
+        Termination termination;
+        change(termination);
+        try {
+            termination.validate();
+        } catch (const std::invalid_argument& error) {
+            return std::string(error.what());
+        }
+        return std::string("<no exception>");
+    };
+    EXPECT_THAT(messageFor([](Termination& t) { t.maxIterations = -1; }), HasSubstr("maxIterations = -1"));
+    EXPECT_THAT(messageFor([](Termination& t) { t.stableIterations = -2; }), HasSubstr("stableIterations = -2"));
+    EXPECT_THAT(messageFor([](Termination& t) { t.stableTolerance = std::nan(""); }), HasSubstr("stableTolerance"));
+    EXPECT_THAT(messageFor([](Termination& t) { t.maxEvaluations = -5; }), HasSubstr("maxEvaluations = -5"));
+    EXPECT_THAT(messageFor([](Termination& t) { t.maxSeconds = -1.0; }), HasSubstr("maxSeconds"));
+    EXPECT_EQ(messageFor([](Termination&) {}), "<no exception>");
+    EXPECT_FALSE(Termination::none().guaranteesStop());
+    EXPECT_TRUE(Termination::paper().guaranteesStop());
+    EXPECT_EQ(toString(StopReason::Completed), "completed");
+    EXPECT_EQ(toString(StopReason::MaxIterations), "max-iterations");
+    EXPECT_EQ(toString(StopReason::Stable), "stable");
+    EXPECT_EQ(toString(StopReason::MaxEvaluations), "max-evaluations");
+    EXPECT_EQ(toString(StopReason::WallTime), "wall-time");
 }
 
 TEST(Algorithms, ConstructedParametersAreValidatedForEveryAlgorithm) {

@@ -21,7 +21,8 @@ public:
         ++mCalls;
         Score score;
         score.fitness = 1.0;
-        for (std::size_t i = 0; i < combination.size(); ++i) score.fitness -= mLoss[i][static_cast<std::size_t>(combination[i])];
+        for (std::size_t i = 0; i < combination.size(); ++i)
+            score.fitness -= mLoss[i][static_cast<std::size_t>(combination[i])];
         return score;
     }
     const std::vector<std::vector<double>>& loss() const { return mLoss; }
@@ -170,10 +171,9 @@ struct HarborProblem {
         const double sea = c[2] / 5.0;
         return 1.0 - 0.25 * air - 0.35 * ship - 0.2 * sea - 0.2 * ship * sea;
     }};
-    AdditiveCost cost{0.5,
-                      {{1.228, 0.822, 0.600, 0.450, 0.393},
-                       {6.578, 6.013, 5.317, 3.341, 3.071},
-                       {3.0, 2.4, 1.8, 1.2, 0.7, 0.3}}};
+    AdditiveCost cost{
+        0.5,
+        {{1.228, 0.822, 0.600, 0.450, 0.393}, {6.578, 6.013, 5.317, 3.341, 3.071}, {3.0, 2.4, 1.8, 1.2, 0.7, 0.3}}};
     Problem problem(double budgetMs) {
         Problem p;
         p.levelCounts = {5, 5, 6};

@@ -10,9 +10,9 @@
 namespace lodopt::optimizer {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::HandProblem;
 using testing::HarborProblem;
+using ::testing::HasSubstr;
 
 std::string constructionError(GapsoParameters parameters) {
     try {

@@ -7,8 +7,8 @@
 namespace lodopt::optimizer {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::HandProblem;
+using ::testing::HasSubstr;
 using testing::MaxCost;
 using testing::TableEvaluator;
 
@@ -58,7 +58,8 @@ TEST(Problem, RejectsBadShapesNamingTheElement) {
     EXPECT_THAT(messageOf<ProblemError>([&] { validateProblem(problem); }), HasSubstr("hints[0].distance"));
     problem = hand.problem();
     problem.surrogateLoss = {{0, 1, 2}, {0, 1}, {0, 1}};
-    EXPECT_THAT(messageOf<ProblemError>([&] { validateProblem(problem); }), HasSubstr("surrogateLoss[2] has 2 entries"));
+    EXPECT_THAT(messageOf<ProblemError>([&] { validateProblem(problem); }),
+                HasSubstr("surrogateLoss[2] has 2 entries"));
     problem.surrogateLoss = {{0, 1, 2}, {0, std::nan("")}, {0, 1, 2}};
     EXPECT_THAT(messageOf<ProblemError>([&] { validateProblem(problem); }), HasSubstr("surrogateLoss[1][1]"));
 }
@@ -85,10 +86,18 @@ TEST(Problem, CombinationValidationNamesTheVariable) {
     HandProblem hand;
     const Problem problem = hand.problem();
     EXPECT_NO_THROW(validateCombination(problem, {2, 1, 0}));
-    EXPECT_THAT(messageOf<ProblemError>([&] { validateCombination(problem, {0, 2, 0}); }),
+    EXPECT_THAT(messageOf<ProblemError>([&] {
+                    validateCombination(problem, {0, 2, 0});
+                }),
                 HasSubstr("combination[1] = 2, variable 1 has 2 levels"));
-    EXPECT_THAT(messageOf<ProblemError>([&] { validateCombination(problem, {0, -1, 0}); }), HasSubstr("combination[1] = -1"));
-    EXPECT_THAT(messageOf<ProblemError>([&] { validateCombination(problem, {0, 0}); }), HasSubstr("has 2 levels, the problem has 3"));
+    EXPECT_THAT(messageOf<ProblemError>([&] {
+                    validateCombination(problem, {0, -1, 0});
+                }),
+                HasSubstr("combination[1] = -1"));
+    EXPECT_THAT(messageOf<ProblemError>([&] {
+                    validateCombination(problem, {0, 0});
+                }),
+                HasSubstr("has 2 levels, the problem has 3"));
     EXPECT_EQ(formatCombination({0, 2, 1}), "[0, 2, 1]");
 }
 

@@ -58,6 +58,14 @@ double coefficient(const timemodel::TimeModel& model, const std::string& name) {
     return 0.0;
 }
 
+// Linear coefficients: an intercept and a vertex cost, every other feature free.
+std::vector<double> linearCoefficients(double interceptMs, double perVertexMs = 0.0) {
+    std::vector<double> c(timemodel::kFeatureCount + 1, 0.0);
+    c[0] = interceptMs;
+    c[1 + static_cast<std::size_t>(Feature::kVertices)] = perVertexMs;
+    return c;
+}
+
 bool hasNoteContaining(const timemodel::FitReport& report, const std::string& text) {
     for (const std::string& note : report.notes) {
         if (note.find(text) != std::string::npos) return true;
@@ -239,7 +247,7 @@ TEST(WimmerModel, RecoversAMaxOfTwoRegimes) {
 
 TEST(Feedback, MovesTheEstimateTowardsTheMeasurementByBeta) {
     timemodel::LinearModel model;
-    model.setCoefficients({1.0, 0, 0, 0, 0, 0, 0, 0, 0});  // 1 ms, whatever the frame
+    model.setCoefficients(linearCoefficients(1.0));  // 1 ms, whatever the frame
     const timemodel::FrameFeatures frame;
     const timemodel::FeedbackResult result = model.applyFeedback(frame, 1.2, {0.5, 1.0, 4.0});
     EXPECT_TRUE(result.applied);
@@ -251,7 +259,7 @@ TEST(Feedback, MovesTheEstimateTowardsTheMeasurementByBeta) {
 
 TEST(Feedback, HeavyOutliersStayBounded) {
     timemodel::LinearModel model;
-    model.setCoefficients({1.0, 1e-5, 0, 0, 0, 0, 0, 0, 0});
+    model.setCoefficients(linearCoefficients(1.0, 1e-5));
     timemodel::FrameFeatures frame;
     frame[Feature::kVertices] = 1e5;  // estimate 2 ms
     const timemodel::FeedbackParameters parameters;  // beta 0.3, clamp ±1, drift 4
@@ -281,7 +289,7 @@ TEST(Feedback, HeavyOutliersStayBounded) {
 TEST(Feedback, ConvergesToASteadyBias) {
     // The machine is 30% slower than calibrated: repeated feedback learns it.
     timemodel::LinearModel model;
-    model.setCoefficients({2.0, 0, 0, 0, 0, 0, 0, 0, 0});
+    model.setCoefficients(linearCoefficients(2.0));
     const timemodel::FrameFeatures frame;
     for (int i = 0; i < 60; ++i) model.applyFeedback(frame, 2.6);
     EXPECT_NEAR(model.estimateMs(frame), 2.6, 1e-3);

@@ -21,6 +21,9 @@ const char* featureName(Feature feature) {
         case Feature::kBoundingBoxes: return "bounding_boxes";
         case Feature::kVisibleTriangles: return "visible_triangles";
         case Feature::kRasterPixels: return "raster_pixels";
+        case Feature::kRasterTiles: return "raster_tiles";
+        case Feature::kEdgePixels: return "edge_pixels";
+        case Feature::kTexturedPixels: return "textured_pixels";
     }
     return "unknown";
 }
@@ -29,7 +32,7 @@ const std::array<Feature, kFeatureCount>& allFeatures() {
     static const std::array<Feature, kFeatureCount> features = {
         Feature::kVertices,      Feature::kTriangles,        Feature::kTextureBytes, Feature::kDrawCalls,
         Feature::kPixels,        Feature::kDrawnObjects,     Feature::kMatrices,     Feature::kBoundingBoxes,
-        Feature::kVisibleTriangles, Feature::kRasterPixels};
+        Feature::kVisibleTriangles, Feature::kRasterPixels, Feature::kRasterTiles, Feature::kEdgePixels, Feature::kTexturedPixels};
     return features;
 }
 
@@ -121,7 +124,7 @@ std::uint8_t outcode(const glm::vec4& p) {
 // Screen area in pixels of triangle (a, b, c) in clip space after clipping to the near plane,
 // at most the viewport part of its bounding rectangle.
 double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, double halfWidth,
-                            double halfHeight) {
+                            double halfHeight, double& tiles, double& edges) {
     glm::vec4 polygon[4];
     int count = 0;
     const glm::vec4 in[3] = {a, b, c};
@@ -152,18 +155,29 @@ double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::v
     const double visibleWidth = std::min(maxX, halfWidth) - std::max(minX, -halfWidth);
     const double visibleHeight = std::min(maxY, halfHeight) - std::max(minY, -halfHeight);
     if (visibleWidth <= 0.0 || visibleHeight <= 0.0) return 0.0;
+    const double x0 = std::max(minX, -halfWidth) + halfWidth, x1 = std::min(maxX, halfWidth) + halfWidth;
+    const double y0 = std::max(minY, -halfHeight) + halfHeight, y1 = std::min(maxY, halfHeight) + halfHeight;
+    tiles += (std::floor(x1 / 64.0) - std::floor(x0 / 64.0) + 1.0) * (std::floor(y1 / 64.0) - std::floor(y0 / 64.0) + 1.0);
+    double perimeter = 0.0;
+    for (int i = 0; i < count; ++i) {
+        const int j = (i + 1) % count;
+        perimeter += std::hypot(xs[j] - xs[i], ys[j] - ys[i]);
+    }
+    edges += std::min(perimeter, 2.0 * (visibleWidth + visibleHeight));
     return std::min(0.5 * std::abs(twiceArea), visibleWidth * visibleHeight);
 }
 
 }  // namespace
 
-RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
+RasterFeatures rasterFeatures(const scenes::Scene& scene, const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
                               int height) {
     assert(width > 0 && height > 0);
     RasterFeatures result;
     std::vector<glm::vec4> clip;
     std::vector<std::uint8_t> codes;
     for (const scenes::Mesh& mesh : meshes) {
+        const bool textured = mesh.material >= 0 && scene.materials[mesh.material].baseColorTexture >= 0;
+        const double pixelsBefore = result.rasterPixels;
         clip.resize(mesh.positions.size());
         codes.resize(mesh.positions.size());
         for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
@@ -174,15 +188,17 @@ RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm
             const std::uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
             if (codes[a] & codes[b] & codes[c]) continue;  // trivially outside one plane
             result.visibleTriangles += 1.0;
-            result.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height);
+            result.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height,
+                                                        result.rasterTiles, result.edgePixels);
         }
+        if (textured) result.texturedPixels += result.rasterPixels - pixelsBefore;
     }
     return result;
 }
 
 namespace {
 
-FrameFeatures levelContribution(const scenes::Level& level, const glm::mat4& modelViewProjection, int width,
+FrameFeatures levelContribution(const scenes::Scene& scene, const scenes::Level& level, const glm::mat4& modelViewProjection, int width,
                                 int height) {
     const scenes::LevelStats& stats = level.stats;
     FrameFeatures f;
@@ -193,9 +209,12 @@ FrameFeatures levelContribution(const scenes::Level& level, const glm::mat4& mod
     f[Feature::kPixels] = projectedPixels(stats.bounds, modelViewProjection, width, height);
     f[Feature::kDrawnObjects] = 1.0;
     f[Feature::kMatrices] = 1.0;
-    const RasterFeatures raster = rasterFeatures(level.meshes, modelViewProjection, width, height);
+    const RasterFeatures raster = rasterFeatures(scene, level.meshes, modelViewProjection, width, height);
     f[Feature::kVisibleTriangles] = raster.visibleTriangles;
     f[Feature::kRasterPixels] = raster.rasterPixels;
+    f[Feature::kRasterTiles] = raster.rasterTiles;
+    f[Feature::kEdgePixels] = raster.edgePixels;
+    f[Feature::kTexturedPixels] = raster.texturedPixels;
     return f;
 }
 
@@ -213,7 +232,7 @@ FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& cam
         mFirstLevel.push_back(static_cast<int>(mContributions.size()));
         const glm::mat4 modelViewProjection = viewProjection * object.transform;
         for (const scenes::Level& level : object.levels) {
-            mContributions.push_back(levelContribution(level, modelViewProjection, width, height));
+            mContributions.push_back(levelContribution(scene, level, modelViewProjection, width, height));
         }
     }
     mFirstLevel.push_back(static_cast<int>(mContributions.size()));  // end sentinel
@@ -262,7 +281,7 @@ FrameFeatures computeFrameFeatures(const scenes::Scene& scene, const scenes::Com
         const int level = combination[o];
         if (level == scenes::kNotDrawn) continue;
         const scenes::Object& object = scene.objects[o];
-        out += levelContribution(object.levels[level], viewProjection * object.transform, width, height);
+        out += levelContribution(scene, object.levels[level], viewProjection * object.transform, width, height);
     }
     return out;
 }

@@ -7,7 +7,9 @@
 //   K1 = 0.01, K2 = 0.03, L = 255, population covariance; the map holds one value per window
 //   lying fully inside the image ("valid" windows, no padding, no downsampling), the score is
 //   the map's mean. Equals scikit-image's structural_similarity(gaussian_weights=True,
-//   sigma=1.5, use_sample_covariance=False, data_range=255) to ~1e-15. Computed in float64.
+//   sigma=1.5, use_sample_covariance=False, data_range=255) to ~1e-15. Computed in float64
+//   from exact integer gray; windows whose pixels equal the reference's are exactly 1 and
+//   are not recomputed.
 // - Boundary entropy: Sobel 3x3 gradient magnitude on interior pixels, a histogram over the
 //   fixed range [0, 255 sqrt(20)] (the largest possible Sobel magnitude of 8-bit data), and
 //   its Shannon entropy in bits. `EntropyMode::Paper`: the paper's literal Roberts-cross sum

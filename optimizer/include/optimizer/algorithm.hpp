@@ -24,10 +24,10 @@ namespace lodopt::optimizer {
 // its rule. The constructive algorithms (greedy, heuristics, mckp, exhaustive) end on their
 // own and honour only maxEvaluations and maxSeconds.
 struct Termination {
-    int maxIterations = 50;         // >= 0, iterations after the initial evaluation
-    int stableIterations = 15;      // >= 0, K: stop when the best fitness has improved by no
-                                    // more than stableTolerance over the last K iterations
-    double stableTolerance = 1e-6;  // >= 0, fitness units
+    int maxIterations = 50;           // >= 0, iterations after the initial evaluation
+    int stableIterations = 15;        // >= 0, K: stop when the best fitness has improved by no
+                                      // more than stableTolerance over the last K iterations
+    double stableTolerance = 1e-6;    // >= 0, fitness units
     std::int64_t maxEvaluations = 0;  // >= 0, cache misses (renders) allowed
     double maxSeconds = 0.0;          // >= 0, wall-clock seconds, checked between iterations
 
@@ -79,11 +79,9 @@ struct Candidate {
 };
 
 // Higher fitness; on equal fitness lower predicted ms; then lexicographically smaller.
-bool isBetter(double fitnessA, double msA, const Combination& a, double fitnessB, double msB,
-              const Combination& b);
+bool isBetter(double fitnessA, double msA, const Combination& a, double fitnessB, double msB, const Combination& b);
 inline bool isBetter(const Candidate& a, const Candidate& b) {
-    return isBetter(a.score.fitness, a.predictedMs, a.combination, b.score.fitness, b.predictedMs,
-                    b.combination);
+    return isBetter(a.score.fitness, a.predictedMs, a.combination, b.score.fitness, b.predictedMs, b.combination);
 }
 
 class Algorithm {

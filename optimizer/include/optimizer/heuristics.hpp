@@ -55,8 +55,7 @@ struct ImportanceParameters {
 // alpha1 (1 + tan theta) d + alpha2 * 100 / s: the denominator of eq. (11)-(12).
 double importanceDenominator(const ImportanceView& view, double alpha1, double alpha2);
 // I = B / denominator(view), eq. (11); B = importanceDenominator(benchmark).
-double importance(const ImportanceView& view, const ImportanceView& benchmark, double alpha1,
-                  double alpha2);
+double importance(const ImportanceView& view, const ImportanceView& benchmark, double alpha1, double alpha2);
 
 // Dong et al. 2015 §2.4, the importance-ordered scheduler: initial levels by distance
 // thresholds; under budget, raise variables in decreasing importance, each as far toward level

@@ -9,12 +9,12 @@
 //
 // Solver: dynamic programming over the capacity discretised into `buckets` equal steps, costs
 // rounded up to whole steps, O(variables * levels * buckets) time (100 x 6 x 10000 is a few
-// milliseconds) and variables * (buckets + 1) bytes of choices. Exactness: the answer is the
+// milliseconds) and 2 * variables * (buckets + 1) bytes of choices. Exactness: the answer is the
 // optimum of the surrogate problem when every cost (after subtracting each variable's cheapest
 // level) is a whole multiple of the step; otherwise it is the optimum with costs rounded up,
 // which is always feasible under the additive model but may miss solutions that need the last
-// (variables * step) milliseconds of capacity. Ties in loss go to the lower capacity bucket
-// reached first and then the finer level.
+// (variables * step) milliseconds of capacity. On equal loss the recurrence keeps the finer
+// level, so the answer is deterministic.
 // The true Cost is then checked; if it is not additive and the answer is over budget, it is
 // repaired (repair.hpp). Only the final combination is evaluated.
 #pragma once
@@ -36,8 +36,8 @@ struct MckpParameters {
 // i (costs may be negative); `capacityMs` finite (may be +infinity: every variable then takes
 // its least-loss level). Returns one level per variable, or an empty combination when even the
 // cheapest choice exceeds the capacity.
-Combination solveMckp(std::span<const std::vector<double>> loss,
-                      std::span<const std::vector<double>> costMs, double capacityMs, int buckets);
+Combination solveMckp(std::span<const std::vector<double>> loss, std::span<const std::vector<double>> costMs,
+                      double capacityMs, int buckets);
 
 // The additive surrogate by measurement: loss[i][l] = fitness(finest) - fitness(finest with
 // variable i at l), from sum(levelCounts - 1) + 1 evaluations in one batch. Throws

@@ -112,7 +112,9 @@ private:
 
 // "Not known" for a hint: the heuristics that need the hint refuse to run without it.
 inline constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
-inline bool isKnown(double hint) { return !std::isnan(hint); }
+inline bool isKnown(double hint) {
+    return !std::isnan(hint);
+}
 
 // What the baselines know about one variable at the current view, as plain numbers so that
 // they run without geometry. Every field is optional (kUnknown or empty).
@@ -133,7 +135,7 @@ struct VariableHints {
 // Everything an algorithm may know. The evaluator and cost are borrowed: they must outlive
 // every run that uses the problem.
 struct Problem {
-    std::vector<int> levelCounts;  // levelCounts[i] >= 1 levels for variable i; at least 1 variable
+    std::vector<int> levelCounts;    // levelCounts[i] >= 1 levels for variable i; at least 1 variable
     Evaluator* evaluator = nullptr;  // not null
     const Cost* cost = nullptr;      // not null
     // > 0, milliseconds of predicted render time; +infinity for no budget.

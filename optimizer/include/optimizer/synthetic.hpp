@@ -12,6 +12,7 @@
 // from the weights, so that the heuristic baselines see informative but imperfect data.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -21,13 +22,13 @@
 namespace lodopt::optimizer {
 
 struct SyntheticParameters {
-    int variables = 30;                // >= 1
-    int minLevels = 4;                 // >= 1
-    int maxLevels = 6;                 // >= minLevels
-    double pairDensity = 0.1;          // [0, 1], fraction of variable pairs with a c_ij term
-    double interactionWeight = 0.4;    // >= 0, sum of |c_ij| over all pairs (0 = additive)
-    double negativeFraction = 0.3;     // [0, 1], fraction of pair terms with c_ij < 0
-    double budgetFraction = 0.3;       // [0, 1]: budget = min + fraction * (max - min) ms
+    int variables = 30;              // >= 1
+    int minLevels = 4;               // >= 1
+    int maxLevels = 6;               // >= minLevels
+    double pairDensity = 0.1;        // [0, 1], fraction of variable pairs with a c_ij term
+    double interactionWeight = 0.4;  // >= 0, sum of |c_ij| over all pairs (0 = additive)
+    double negativeFraction = 0.3;   // [0, 1], fraction of pair terms with c_ij < 0
+    double budgetFraction = 0.3;     // [0, 1]: budget = min + fraction * (max - min) ms
     std::uint64_t seed = 1;
 };
 
@@ -35,23 +36,28 @@ struct SyntheticParameters {
 class InteractionEvaluator final : public Evaluator {
 public:
     struct Pair {
-        int a = 0;
-        int b = 0;
+        std::size_t a = 0;
+        std::size_t b = 0;
         double weight = 0.0;  // c_ab
     };
     // degradation[i][l] = q_i(l); weights[i] = w_i.
     InteractionEvaluator(std::vector<std::vector<double>> degradation, std::vector<double> weights,
                          std::vector<Pair> pairs);
 
+    // Components: the additive loss sum w_i q_i, and the rest of the loss (pair terms and
+    // clamping).
     Score evaluate(const Combination& combination) override;
     double fitness(const Combination& combination) const;
-    std::vector<std::string> componentNames() const override { return {"additive", "interaction"}; }
+    double additiveLoss(const Combination& combination) const;
+    std::vector<std::string> componentNames() const override { return {"additiveLoss", "interactionLoss"}; }
 
     const std::vector<std::vector<double>>& degradation() const { return mDegradation; }
     const std::vector<double>& weights() const { return mWeights; }
     const std::vector<Pair>& pairs() const { return mPairs; }
 
 private:
+    double degradationAt(std::size_t variable, const Combination& combination) const;
+
     std::vector<std::vector<double>> mDegradation;
     std::vector<double> mWeights;
     std::vector<Pair> mPairs;

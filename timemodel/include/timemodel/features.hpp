@@ -45,8 +45,11 @@ enum class Feature : int {
     kBoundingBoxes,
     kVisibleTriangles,
     kRasterPixels,
+    kRasterTiles,
+    kEdgePixels,
+    kTexturedPixels,
 };
-inline constexpr std::size_t kFeatureCount = 10;
+inline constexpr std::size_t kFeatureCount = 13;
 
 // Stable snake_case name ("vertices", "texture_bytes", ...), used in profiles and tables.
 const char* featureName(Feature feature);
@@ -79,8 +82,11 @@ double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& mode
 struct RasterFeatures {
     double visibleTriangles = 0.0;
     double rasterPixels = 0.0;
+    double rasterTiles = 0.0;
+    double edgePixels = 0.0;
+    double texturedPixels = 0.0;
 };
-RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
+RasterFeatures rasterFeatures(const scenes::Scene& scene, const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
                               int height);
 
 // Per-viewpoint table of feature contributions: build once per (scene, camera, size), then

@@ -1,0 +1,365 @@
+// lodopt schedule: the real-time scheduler along a camera path, one decision per frame without
+// rendering; with --render each frame is then rendered headless, timed, scored against the
+// all-finest reference and its measured time fed back into the time model.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "cli_common.hpp"
+#include "metrics/metrics.hpp"
+#include "progress.hpp"
+#include "renderer/renderer.hpp"
+#include "scenes/atomic_file.hpp"
+#include "scenes/builtin.hpp"
+#include "schedule_common.hpp"
+#include "scheduler/scheduler.hpp"
+#include "time_profile.hpp"
+
+namespace lodopt::cli {
+namespace {
+
+struct ScheduleOptions {
+    std::string scene = "harbor";
+    std::uint32_t sceneSeed = 1;
+    std::string path;
+    double budgetMs = 0.0;
+    std::string coefficients;
+    bool render = false;
+    bool noFitness = false;
+    bool noBaseline = false;
+    std::string size = "512x512";
+    std::string profile;
+    std::string model;
+    std::string organisation = "flat";
+    std::string features = "bounds";
+    bool noSwitchControl = false;
+    std::string switchControl;
+    bool noFeedback = false;
+    double beta = 0.3;
+    int frames = 0;
+    int stride = 1;
+    int repeats = 3;
+    std::string outDir = "out/schedule";
+};
+
+// Fused fitness of `frame` against `reference` (both RGBA renders of one size).
+double fitnessOf(const renderer::Frame& frame, const renderer::Frame& reference, const metrics::MetricParameters& p) {
+    const metrics::ImageView candidate = metrics::makeImageView(frame.rgba.data(), frame.width, frame.height, 4);
+    const metrics::ImageView truth = metrics::makeImageView(reference.rgba.data(), reference.width, reference.height, 4);
+    return metrics::evaluate(candidate, truth, p).fitness;
+}
+
+struct FrameRow {
+    int frame = 0;
+    double timeSeconds = 0.0;
+    double decisionMicroseconds = 0.0;
+    double predictedMs = 0.0;
+    double finestPredictedMs = 0.0;
+    double baselinePredictedMs = 0.0;
+    double measuredMs = NAN;
+    double baselineMeasuredMs = NAN;
+    double fitness = NAN;
+    double baselineFitness = NAN;
+    double feedbackScale = 1.0;
+    scheduler::FrameDecision decision;
+    std::vector<int> histogram;
+};
+
+std::string csvNumber(double value) {
+    if (std::isnan(value)) return "";
+    std::ostringstream out;
+    out << std::setprecision(8) << value;
+    return out.str();
+}
+
+std::string framesCsv(const std::vector<FrameRow>& rows, int maxLevels) {
+    std::ostringstream csv;
+    csv << "frame,time_s,decision_us,predicted_ms,measured_ms,finest_predicted_ms,baseline_predicted_ms,"
+           "baseline_measured_ms,budget_reachable,budget_met,fitness,baseline_fitness,visible,culled,dropped,drawn,"
+           "protected_lowered,forced_switches,switches,held,feedback_scale";
+    for (int l = 0; l < maxLevels; ++l) csv << ",level_" << l;
+    csv << "\n";
+    for (const FrameRow& r : rows) {
+        const scheduler::FrameDecision& d = r.decision;
+        const int drawn = d.visibleObjects - d.droppedObjects;
+        csv << r.frame << ',' << csvNumber(r.timeSeconds) << ',' << csvNumber(r.decisionMicroseconds) << ','
+            << csvNumber(r.predictedMs) << ',' << csvNumber(r.measuredMs) << ',' << csvNumber(r.finestPredictedMs)
+            << ',' << csvNumber(r.baselinePredictedMs) << ',' << csvNumber(r.baselineMeasuredMs) << ','
+            << int(d.budgetReachable) << ',' << int(d.budgetMet) << ',' << csvNumber(r.fitness) << ','
+            << csvNumber(r.baselineFitness) << ',' << d.visibleObjects << ',' << d.culledObjects << ','
+            << d.droppedObjects << ',' << drawn << ',' << d.protectedLowered << ',' << d.forcedSwitches << ','
+            << d.switches << ',' << d.heldObjects << ',' << csvNumber(r.feedbackScale);
+        for (int count : r.histogram) csv << ',' << count;
+        csv << "\n";
+    }
+    return csv.str();
+}
+
+// Share of `rows` (those `counted`) whose `value` lies within ±10% of the budget, or at most 10%
+// above it.
+struct BudgetShares {
+    int frames = 0;
+    double within10 = 0.0;
+    double atMost110 = 0.0;
+};
+template <typename Value, typename Counted>
+BudgetShares budgetShares(const std::vector<FrameRow>& rows, double budget, Value value, Counted counted) {
+    BudgetShares shares;
+    int within = 0, atMost = 0;
+    for (const FrameRow& r : rows) {
+        const double v = value(r);
+        if (!counted(r) || std::isnan(v)) continue;
+        ++shares.frames;
+        if (std::abs(v - budget) <= 0.1 * budget) ++within;
+        if (v <= 1.1 * budget) ++atMost;
+    }
+    if (shares.frames > 0) {
+        shares.within10 = double(within) / shares.frames;
+        shares.atMost110 = double(atMost) / shares.frames;
+    }
+    return shares;
+}
+
+nlohmann::json sharesJson(const BudgetShares& s) {
+    return {{"frames", s.frames}, {"within_10_percent", s.within10}, {"at_most_110_percent", s.atMost110}};
+}
+
+nlohmann::json spreadJson(const Spread& s) {
+    return {{"median", s.median}, {"p90", s.p90}, {"max", s.max}, {"mean", s.mean}};
+}
+
+void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
+    renderer::RenderSettings settings;
+    parseSize(options.size, settings.width, settings.height);
+    const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
+    if (scene.objects.empty()) throw UsageError("scene '" + scene.name + "' has no objects");
+    scenes::CameraPath path = options.path.empty() ? defaultCameraPath(scene) : loadCameraPath(scene, options.path);
+    std::vector<int> frameIndices;
+    for (int f = 0; f < int(path.frames.size()); f += options.stride) {
+        if (options.frames > 0 && int(frameIndices.size()) >= options.frames) break;
+        frameIndices.push_back(f);
+    }
+
+    std::unique_ptr<renderer::Renderer> renderer;
+    std::string glRenderer;
+    if (options.render) {
+        renderer = std::make_unique<renderer::Renderer>(scene, settings);
+        glRenderer = renderer->glRendererString();
+    }
+    const TimeEstimator estimator =
+        loadTimeEstimator(options.profile, options.model, scene.name, settings, glRenderer, std::cerr);
+
+    scheduler::SchedulerParameters parameters;
+    parameters.budgetMs = options.budgetMs;
+    if (!options.coefficients.empty()) parameters.coefficients = loadCoefficientsOrThrow(options.coefficients);
+    parameters.organisation = parseOrganisation(options.organisation);
+    parameters.switchControl.enabled = !options.noSwitchControl;
+    if (!options.switchControl.empty()) parseSwitchControl(options.switchControl, parameters.switchControl);
+    parameters.feedback.beta = options.beta;
+    const scheduler::FeatureMode mode = parseFeatureMode(options.features);
+
+    const auto setupStart = std::chrono::steady_clock::now();
+    const scheduler::SceneIndex index(scene, settings.width, settings.height, mode);
+    scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
+    const double setupSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
+
+    metrics::MetricParameters metricParameters;
+    const scenes::Combination reference = scenes::referenceCombination(scene);
+    renderer::Frame referenceFrame, frame;
+    scenes::Combination finest, baseline;
+    std::vector<FrameRow> rows;
+    rows.reserve(frameIndices.size());
+    Progress progress("schedule", frameIndices.size(), output.quiet);
+    const int maxLevels = index.maxLevelCount();
+    for (int f : frameIndices) {
+        const scenes::Camera& camera = path.frames[std::size_t(f)];
+        FrameRow row;
+        row.frame = f;
+        row.timeSeconds = double(f) / double(path.framesPerSecond);
+        const auto start = std::chrono::steady_clock::now();
+        const scheduler::FrameDecision& decision = frameScheduler.decide(camera, row.timeSeconds);
+        row.decisionMicroseconds =
+            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
+        row.decision = decision;
+        row.predictedMs = decision.predictedMs;
+        finestVisible(frameScheduler, finest);
+        row.finestPredictedMs = predictInLastFrame(frameScheduler, finest);
+        // The unscheduled baseline: the distance thresholds' levels of the visible objects.
+        baseline = frameScheduler.initialLevels();
+        row.baselinePredictedMs = predictInLastFrame(frameScheduler, baseline);
+        row.histogram.assign(std::size_t(maxLevels), 0);
+        for (int level : decision.levels) {
+            if (level != scenes::kNotDrawn) ++row.histogram[std::size_t(level)];
+        }
+        if (renderer) {
+            if (!options.noFitness) {
+                renderer->render(reference, camera, referenceFrame);
+                renderer->render(row.decision.levels, camera, frame);
+                row.fitness = fitnessOf(frame, referenceFrame, metricParameters);
+                if (!options.noBaseline) {
+                    renderer->render(baseline, camera, frame);
+                    row.baselineFitness = fitnessOf(frame, referenceFrame, metricParameters);
+                }
+            }
+            row.measuredMs = renderer->timeRender(row.decision.levels, camera, options.repeats, 1);
+            if (!options.noBaseline) row.baselineMeasuredMs = renderer->timeRender(baseline, camera, options.repeats, 1);
+            if (!options.noFeedback) frameScheduler.reportMeasuredMs(row.measuredMs);
+        }
+        row.feedbackScale = frameScheduler.model().feedbackScale();
+        rows.push_back(std::move(row));
+        progress.step(camera.name);
+    }
+    progress.finish();
+
+    // Summary.
+    std::vector<double> decisionUs, predicted, measured, baselineMeasured, fitness, baselineFitness, error;
+    int switches = 0, forced = 0, protectedFrames = 0, unreachable = 0, overPredicted = 0, dropped = 0;
+    for (const FrameRow& r : rows) {
+        decisionUs.push_back(r.decisionMicroseconds);
+        predicted.push_back(r.predictedMs);
+        if (!std::isnan(r.measuredMs)) {
+            measured.push_back(r.measuredMs);
+            error.push_back(std::abs(r.measuredMs - r.predictedMs) / r.measuredMs);
+        }
+        if (!std::isnan(r.baselineMeasuredMs)) baselineMeasured.push_back(r.baselineMeasuredMs);
+        if (!std::isnan(r.fitness)) fitness.push_back(r.fitness);
+        if (!std::isnan(r.baselineFitness)) baselineFitness.push_back(r.baselineFitness);
+        switches += r.decision.switches;
+        forced += r.decision.forcedSwitches;
+        if (r.decision.protectedLowered > 0) ++protectedFrames;
+        if (!r.decision.budgetReachable) ++unreachable;
+        if (!r.decision.budgetMet) ++overPredicted;
+        dropped += r.decision.droppedObjects;
+    }
+    const double budget = options.budgetMs;
+    auto reachable = [](const FrameRow& r) { return r.decision.budgetReachable; };
+    // Binding: even the finest visible frame is predicted over the budget, so meeting it is
+    // the scheduler's doing, not the scene's.
+    auto binding = [&](const FrameRow& r) { return r.decision.budgetReachable && r.finestPredictedMs > budget; };
+    auto measuredOf = [](const FrameRow& r) { return r.measuredMs; };
+    auto baselineOf = [](const FrameRow& r) { return r.baselineMeasuredMs; };
+    nlohmann::json summary = {
+        {"scene", scene.name},
+        {"path", path.name},
+        {"frames", rows.size()},
+        {"frames_per_second", path.framesPerSecond},
+        {"budget_ms", budget},
+        {"size", std::to_string(settings.width) + "x" + std::to_string(settings.height)},
+        {"organisation", scheduler::toString(parameters.organisation)},
+        {"features", scheduler::toString(mode)},
+        {"switch_control", parameters.switchControl.enabled},
+        {"feedback", options.render && !options.noFeedback},
+        {"coefficients", options.coefficients.empty() ? "published defaults" : options.coefficients},
+        {"time_model", estimator.name},
+        {"objects", index.objectCount()},
+        {"setup_seconds", setupSeconds},
+        {"decision_us", spreadJson(spreadOf(decisionUs))},
+        {"predicted_ms", spreadJson(spreadOf(predicted))},
+        {"frames_budget_unreachable", unreachable},
+        {"frames_predicted_over_budget", overPredicted},
+        {"frames_protected_lowered", protectedFrames},
+        {"switches", {{"total", switches}, {"per_frame", rows.empty() ? 0.0 : double(switches) / rows.size()},
+                      {"forced", forced}}},
+        {"dropped_objects_per_frame", rows.empty() ? 0.0 : double(dropped) / rows.size()},
+        {"final_feedback_scale", frameScheduler.model().feedbackScale()},
+    };
+    if (options.render) {
+        summary["measured_ms"] = spreadJson(spreadOf(measured));
+        summary["prediction_error"] = spreadJson(spreadOf(error));
+        summary["measured_vs_budget"] = {{"reachable", sharesJson(budgetShares(rows, budget, measuredOf, reachable))},
+                                         {"binding", sharesJson(budgetShares(rows, budget, measuredOf, binding))}};
+        if (!options.noBaseline) {
+            summary["baseline_measured_ms"] = spreadJson(spreadOf(baselineMeasured));
+            summary["baseline_vs_budget"] = {
+                {"reachable", sharesJson(budgetShares(rows, budget, baselineOf, reachable))},
+                {"binding", sharesJson(budgetShares(rows, budget, baselineOf, binding))}};
+        }
+        if (!options.noFitness) {
+            summary["fitness"] = spreadJson(spreadOf(fitness));
+            if (!options.noBaseline) summary["baseline_fitness"] = spreadJson(spreadOf(baselineFitness));
+        }
+    }
+    const std::filesystem::path dir(options.outDir);
+    scenes::writeTextAtomically((dir / "frames.csv").string(), framesCsv(rows, maxLevels));
+    writeJsonFile((dir / "summary.json").string(), summary);
+    summary["out"] = options.outDir;
+    if (output.json) {
+        printJson(summary);
+        return;
+    }
+    const Spread d = spreadOf(decisionUs);
+    std::cout << scene.name << " / " << path.name << ": " << rows.size() << " frames, budget " << budget << " ms, "
+              << scheduler::toString(parameters.organisation) << ", switch control "
+              << (parameters.switchControl.enabled ? "on" : "off") << "\n"
+              << std::fixed << std::setprecision(1) << "  decision " << d.median << " us median, " << d.max
+              << " us max; predicted " << spreadOf(predicted).mean << " ms mean; " << switches << " switches ("
+              << (rows.empty() ? 0.0 : double(switches) / rows.size()) << " per frame)\n";
+    if (options.render) {
+        const BudgetShares s = budgetShares(rows, budget, measuredOf, reachable);
+        std::cout << "  measured " << spreadOf(measured).mean << " ms mean; within ±10% of the budget on "
+                  << std::setprecision(0) << 100.0 * s.within10 << "% of " << s.frames << " reachable frames, <= 110% on "
+                  << 100.0 * s.atMost110 << "%";
+        if (!options.noBaseline) {
+            const BudgetShares b = budgetShares(rows, budget, baselineOf, reachable);
+            std::cout << " (unscheduled: " << 100.0 * b.within10 << "%, " << 100.0 * b.atMost110 << "%)";
+        }
+        std::cout << "\n";
+        if (!options.noFitness) {
+            std::cout << std::setprecision(4) << "  fitness " << spreadOf(fitness).mean << " mean";
+            if (!options.noBaseline) std::cout << " (unscheduled " << spreadOf(baselineFitness).mean << ")";
+            std::cout << "\n";
+        }
+    }
+    std::cout << "  wrote " << (dir / "frames.csv").string() << " and summary.json\n";
+    std::cout.unsetf(std::ios::floatfield);
+}
+
+}  // namespace
+
+void addScheduleCommand(CLI::App& app) {
+    auto options = std::make_shared<ScheduleOptions>();
+    auto output = std::make_shared<OutputOptions>();
+    CLI::App* command = app.add_subcommand("schedule", "Real-time LOD scheduling along a camera path");
+    command->add_option("--scene", options->scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
+    command->add_option("--scene-seed", options->sceneSeed, "Seed of a built-in scene")->capture_default_str();
+    command->add_option("--path", options->path, "Camera path: a name in the scene or a JSON file (default: the scene's first)");
+    command->add_option("--budget-ms", options->budgetMs, "Frame-time budget in milliseconds")
+        ->required()
+        ->check(CLI::PositiveNumber);
+    command->add_option("--coeffs", options->coefficients, "Coefficients from 'lodopt tune' (default: published)");
+    command->add_flag("--render", options->render, "Render, time and score every frame; feed the time back");
+    command->add_flag("--no-fitness", options->noFitness, "With --render: skip the fitness against the reference");
+    command->add_flag("--no-baseline", options->noBaseline, "With --render: skip the unscheduled baseline");
+    command->add_option("--size", options->size, "Render size WIDTHxHEIGHT (as calibrated)")->capture_default_str();
+    command->add_option("--profile", options->profile, "Device profile from 'lodopt calibrate' (default: shipped)");
+    command->add_option("--model", options->model, "Time model in the profile (default: the profile's default)");
+    command->add_option("--organisation", options->organisation, "flat (DONG15) or tiles (CITY17 quadtree)")
+        ->check(CLI::IsMember({"flat", "tiles"}))
+        ->capture_default_str();
+    command->add_option("--features", options->features, "Per-frame features: bounds (fast) or exact")
+        ->check(CLI::IsMember({"bounds", "exact"}))
+        ->capture_default_str();
+    command->add_flag("--no-switch-control", options->noSwitchControl, "Switch levels freely (no hysteresis)");
+    command->add_option("--switch-control", options->switchControl, "Switch control D1,K1,D2,K2,NEAR");
+    command->add_flag("--no-feedback", options->noFeedback, "With --render: do not correct the model");
+    command->add_option("--feedback-beta", options->beta, "Feedback gain beta, DONG15 eq. 9")
+        ->check(CLI::Range(1e-6, 0.999999))
+        ->capture_default_str();
+    command->add_option("--frames", options->frames, "Schedule only the first N frames (0 = all)")
+        ->check(CLI::Range(0, 10000000));
+    command->add_option("--stride", options->stride, "Take every K-th frame of the path")
+        ->check(CLI::Range(1, 1000000))
+        ->capture_default_str();
+    command->add_option("--repeats", options->repeats, "With --render: timed draws per frame (median)")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    command->add_option("--out", options->outDir, "Output folder (frames.csv, summary.json)")->capture_default_str();
+    addOutputOptions(*command, *output);
+    command->callback([options, output] { runSchedule(*options, *output); });
+}
+
+}  // namespace lodopt::cli

@@ -1,0 +1,53 @@
+// Shared by `lodopt tune` and `lodopt schedule`: camera paths from the scene or a file, option
+// parsing for the scheduler, and predictions for any combination of the scheduler's last frame.
+//
+// A camera path file is JSON:
+//   {"name": "walk", "frames_per_second": 30,
+//    "frames": [{"position": [x, y, z], "target": [x, y, z],
+//                "up": [0, 1, 0], "fov_y_degrees": 45, "near": 0.1, "far": 1000}, ...]}
+// ("up", "fov_y_degrees", "near" and "far" optional, with the defaults shown).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scenes/scene.hpp"
+#include "scheduler/scheduler.hpp"
+
+namespace lodopt::cli {
+
+// A path of `scene` by name, or a camera path file (see above). Throws UsageError naming the
+// file and the element, or listing the scene's paths.
+scenes::CameraPath loadCameraPath(const scenes::Scene& scene, const std::string& nameOrFile);
+// The scene's first path; throws UsageError when it has none.
+scenes::CameraPath defaultCameraPath(const scenes::Scene& scene);
+
+// "bounds" | "exact"; throws UsageError.
+scheduler::FeatureMode parseFeatureMode(const std::string& text);
+// "flat" | "tiles"; throws UsageError.
+scheduler::Organisation parseOrganisation(const std::string& text);
+// "D1,K1,D2,K2,NEAR" into switch-control parameters; throws UsageError.
+void parseSwitchControl(const std::string& text, scheduler::SwitchControlParameters& parameters);
+// A coefficients file; throws UsageError with the file's message.
+scheduler::SchedulerCoefficients loadCoefficientsOrThrow(const std::string& path);
+
+// Predicted ms of `levels` in the scheduler's last frame (every drawn object must have been
+// visible in it), with the scheduler's current model.
+double predictInLastFrame(const scheduler::FrameScheduler& scheduler, const scenes::Combination& levels);
+// `levels` with every visible object of the last frame at level 0 and the others not drawn.
+void finestVisible(const scheduler::FrameScheduler& scheduler, scenes::Combination& levels);
+
+// Camera as JSON (position, target, up, fov, near, far) for reports and checkpoints.
+nlohmann::json cameraToJson(const scenes::Camera& camera);
+// Throws UsageError naming `where` when a field is missing or mistyped.
+scenes::Camera cameraFromJson(const nlohmann::json& json, const std::string& where);
+
+// Median, 90th percentile (nearest rank) and max of `values` (0 for an empty list).
+struct Spread {
+    double median = 0.0, p90 = 0.0, max = 0.0, mean = 0.0;
+};
+Spread spreadOf(std::vector<double> values);
+
+}  // namespace lodopt::cli

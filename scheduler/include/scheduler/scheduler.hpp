@@ -1,0 +1,156 @@
+// The real-time LOD scheduler: one decision per frame from the camera alone, no rendering.
+//
+// Flat organisation (DONG15 §2.4, method.md §5), per frame:
+//  1. view-frustum culling (bounding spheres); culled objects are not drawn (kNotDrawn);
+//  2. importance I of every visible object (importance.hpp) and its initial level from the
+//     distance thresholds (eq. 4), within the range the switch control allows (switch_control.hpp);
+//  3. predicted time from the time model over the frame's features (scene_index.hpp);
+//  4. under the budget: raise objects in decreasing importance, each as far toward level 0 as
+//     the budget allows (an object whose next step does not fit is passed over); over it: lower
+//     objects in increasing importance, each as far as needed, in passes
+//       a. I <= 1 within the switch control's range,  b. I <= 1 beyond it,
+//       c. I > 1 within the range,                    d. I > 1 beyond it,
+//     so an object with I > 1 is lowered only when the budget cannot be met otherwise
+//     (FrameDecision::protectedLowered counts them) and the switch control yields to the
+//     budget only when it must (forcedSwitches).
+// After the frame is rendered, reportMeasuredMs() feeds the measured time back into the time
+// model (DONG15 eq. 9, bounded: timemodel::FeedbackParameters).
+//
+// Tile organisation (CITY17 Algorithms 1-2, method.md §6), for large scenes:
+//  1. a quadtree of tiles (tiles.hpp) is culled against the frustum, visible leaves walked
+//     nearest first, objects within a leaf in decreasing importance;
+//  2. Algorithm 1: objects join the frame at their coarsest allowed level while the predicted
+//     time stays within the budget; the rest are not drawn (FrameDecision::droppedObjects).
+//     CITY17 keeps separate CPU and GPU budgets; our time model already combines the two
+//     (wimmer: RT_sys + max(RT_cpu, RT_gpu); linear: their sum), so one predicted-time budget
+//     stands for both;
+//  3. Algorithm 2: each drawn object in that order is raised toward its distance level; when a
+//     step does not fit, either it stops there ("lower the level") or the last N drawn objects
+//     are dropped to make room, whichever loses fewer pixels: stopping loses the object's
+//     projected pixels times the step's simplification-rate difference, dropping loses the
+//     dropped objects' projected pixels. Once `coarsestShare` (20%) of the drawn objects sit
+//     at their coarsest level, the rest stay where Algorithm 1 put them.
+// A decision allocates nothing once the scheduler has seen a frame (Bounds features).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scenes/scene.hpp"
+#include "scheduler/importance.hpp"
+#include "scheduler/scene_index.hpp"
+#include "scheduler/switch_control.hpp"
+#include "scheduler/tiles.hpp"
+#include "timemodel/time_model.hpp"
+
+namespace lodopt::scheduler {
+
+enum class Organisation { Flat, Tiles };
+// "flat", "tiles".
+const char* toString(Organisation organisation);
+
+// B of eq. 12: a fixed benchmark object (DONG15), or, unset, `scale` times the median
+// denominator of the frame's visible objects (as the optimizer's importance baseline does with
+// scale 1), so that about half of them are protected.
+struct Benchmark {
+    std::optional<ObjectView> view;
+    double scale = 1.0;  // > 0, finite; used when `view` is unset
+};
+
+// What tuning fits and a coefficients file holds.
+struct SchedulerCoefficients {
+    ImportanceCoefficients importance;
+    Benchmark benchmark;
+    DistanceThresholds thresholds;
+};
+
+struct SchedulerParameters {
+    double budgetMs = 33.0;  // > 0, finite: milliseconds of predicted render time per frame
+    SchedulerCoefficients coefficients;
+    std::vector<double> objectWeights;  // empty, or one finite weight > 0 per object (w of I)
+    bool protectImportant = true;       // DONG15: objects with I > 1 are lowered last
+    SwitchControlParameters switchControl;
+    timemodel::FeedbackParameters feedback;
+    Organisation organisation = Organisation::Flat;
+    QuadtreeParameters quadtree;
+    double coarsestShare = 0.2;  // (0, 1]: CITY17's share of coarsest objects that ends Algorithm 2
+};
+
+// Throws std::invalid_argument naming the first bad parameter; `objectCount` for the weights.
+void validateParameters(const SchedulerParameters& parameters, int objectCount);
+
+struct FrameDecision {
+    scenes::Combination levels;  // one per object; kNotDrawn = culled or dropped
+    double predictedMs = 0.0;    // the time model's prediction for `levels`
+    double minimumMs = 0.0;      // prediction with every visible object at its coarsest level
+    bool budgetReachable = false;  // minimumMs <= budget: reachable without dropping objects
+    bool budgetMet = false;        // predictedMs <= budget
+    int visibleObjects = 0;        // passed culling
+    int culledObjects = 0;
+    int droppedObjects = 0;        // visible but not drawn (tiles only)
+    int protectedLowered = 0;      // objects with I > 1 left coarser than their initial level
+    int forcedSwitches = 0;        // level changes against the switch control, for the budget
+    int switches = 0;              // objects drawn in both frames whose level changed
+    int heldObjects = 0;           // objects the switch control kept at their level this frame
+    timemodel::FrameFeatures features;  // of `levels`, for the feedback
+};
+
+class FrameScheduler {
+public:
+    // `index` (built for the scene and render size) must outlive the scheduler; `model` fitted.
+    // Throws std::invalid_argument for bad parameters.
+    FrameScheduler(const SceneIndex& index, std::unique_ptr<timemodel::TimeModel> model,
+                   SchedulerParameters parameters);
+    ~FrameScheduler();
+
+    // The decision for the frame seen from `camera` at path time `timeSeconds` (non-decreasing
+    // between calls unless reset()). Valid until the next call.
+    const FrameDecision& decide(const scenes::Camera& camera, double timeSeconds);
+    // DONG15 eq. 9 for the last decision's features; an unusable time is ignored and reported.
+    timemodel::FeedbackResult reportMeasuredMs(double measuredMs);
+    // Forgets the previous frame (levels and switch times); keeps the model's feedback.
+    void reset();
+
+    void setCoefficients(const SchedulerCoefficients& coefficients);  // throws like the constructor
+    void setBudgetMs(double budgetMs);                                // > 0, finite
+    const SchedulerParameters& parameters() const { return mParameters; }
+    const timemodel::TimeModel& model() const { return *mModel; }
+    const SceneIndex& index() const { return mIndex; }
+
+    // Of the last frame, per object: importance (0 when not visible), the distance-threshold
+    // level (kNotDrawn when not visible), and the observed views and features.
+    const std::vector<double>& importances() const { return mImportance; }
+    const scenes::Combination& initialLevels() const { return mInitial; }
+    const FrameObjects& frame() const { return mFrame; }
+
+private:
+    struct Work;
+    void observeFlat();
+    void observeTiles();
+    void computeImportanceAndRanges(double timeSeconds);
+    void decideFlat();
+    void decideTiles();
+    void finishFrame(double timeSeconds);
+    double estimate(const timemodel::FrameFeatures& features) const { return mModel->estimateMs(features); }
+    const timemodel::FrameFeatures& contribution(int object, int level) const;
+    // Moves `object` to `level` in the decision, keeping its features and prediction current.
+    void setLevel(int object, int level);
+
+    const SceneIndex& mIndex;
+    std::unique_ptr<timemodel::TimeModel> mModel;
+    SchedulerParameters mParameters;
+    std::unique_ptr<Quadtree> mQuadtree;
+    FrameObjects mFrame;
+    FrameDecision mDecision;
+    std::vector<double> mImportance;
+    scenes::Combination mInitial;
+    scenes::Combination mPrevious;         // last frame's levels (kNotDrawn when not drawn)
+    std::vector<double> mLastSwitchTime;   // per object, path seconds
+    std::vector<LevelRange> mRange;        // this frame's allowed levels per visible object
+    std::unique_ptr<Work> mWork;           // scratch buffers
+    bool mHavePrevious = false;
+};
+
+}  // namespace lodopt::scheduler

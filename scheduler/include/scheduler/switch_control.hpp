@@ -1,0 +1,47 @@
+// Distance-dependent LOD-switch control (VMI20 §7, method.md §7): an object changes level only
+// if
+//     Δrate < δ1 (dist − near)^k1      and      Δtime_since_last_switch > δ2 (dist − near)^k2,
+// so near objects change in small steps and far objects change rarely.
+//   rate   the level's simplification rate, 1 − triangles(level) / triangles(0), in [0, 1];
+//          Δrate the rates' difference between the current and the new level;
+//   dist   the object's distance, in the unit of the distance thresholds (bounding radii by
+//          default), `near` in the same unit; (dist − near) is floored at 0;
+//   time   seconds of path time (frame index / frames per second), so a run is deterministic.
+// Ours: a one-level step is always allowed once the time condition holds, otherwise an object
+// at `near` could never change at all; the budget may still force a coarser level (the
+// scheduler counts those as forced switches).
+#pragma once
+
+#include <vector>
+
+namespace lodopt::scheduler {
+
+struct SwitchControlParameters {
+    bool enabled = true;
+    double delta1 = 0.15;      // > 0: Δrate bound at (dist − near) = 1
+    double k1 = 0.5;           // >= 0: growth of the Δrate bound with distance
+    double delta2 = 0.1;       // >= 0, seconds: dwell time at (dist − near) = 1
+    double k2 = 0.5;           // >= 0: growth of the dwell time with distance
+    double nearDistance = 2.0; // >= 0, in the distance thresholds' unit
+};
+
+// Throws std::invalid_argument naming the first parameter out of its range.
+void validateSwitchControl(const SwitchControlParameters& parameters);
+
+// Levels an object may take this frame: [finest, coarsest], both valid levels.
+struct LevelRange {
+    int finest = 0;
+    int coarsest = 0;
+};
+
+// Simplification rate of each level of an object with these triangle counts (finest first):
+// 1 − triangles[l] / triangles[0], clamped to [0, 1]; all 0 when triangles[0] is 0.
+std::vector<double> simplificationRates(const std::vector<double>& triangles);
+
+// The range of levels the control allows an object now at `current` (a valid level) that last
+// switched `secondsSinceSwitch` ago, at distance `distance`; `rates` one per level (see
+// simplificationRates). Disabled control: every level. Held (too soon): {current}.
+LevelRange allowedLevels(int current, double secondsSinceSwitch, double distance, const std::vector<double>& rates,
+                         const SwitchControlParameters& parameters);
+
+}  // namespace lodopt::scheduler

@@ -1,0 +1,290 @@
+// The scheduler's per-frame knowledge of a scene without rendering: frustum culling (planes
+// after Gribb & Hartmann 2001), importance inputs, and time-model features per level, exact
+// or from canonical measurements scaled by the projected bounding box (see scene_index.hpp).
+#include "scheduler/scene_index.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "scheduler/switch_control.hpp"
+
+namespace lodopt::scheduler {
+
+using timemodel::FrameFeatures;
+using timemodel::kFeatureCount;
+
+const char* toString(FeatureMode mode) { return mode == FeatureMode::Exact ? "exact" : "bounds"; }
+
+Frustum Frustum::fromViewProjection(const glm::mat4& m) {
+    // Rows of the matrix (glm is column-major: m[column][row]).
+    auto row = [&](int r) { return glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]); };
+    Frustum f;
+    f.planes[0] = row(3) + row(0);  // left
+    f.planes[1] = row(3) - row(0);  // right
+    f.planes[2] = row(3) + row(1);  // bottom
+    f.planes[3] = row(3) - row(1);  // top
+    f.planes[4] = row(3) + row(2);  // near
+    f.planes[5] = row(3) - row(2);  // far
+    for (glm::vec4& p : f.planes) {
+        const float length = glm::length(glm::vec3(p));
+        if (length > 0.0f) p /= length;
+    }
+    return f;
+}
+
+bool Frustum::intersectsSphere(glm::vec3 center, float radius) const {
+    for (const glm::vec4& p : planes) {
+        if (glm::dot(glm::vec3(p), center) + p.w < -radius) return false;
+    }
+    return true;
+}
+
+bool Frustum::intersectsBox(glm::vec3 low, glm::vec3 high) const {
+    for (const glm::vec4& p : planes) {
+        // The corner furthest along the plane normal: if it is outside, the whole box is.
+        const glm::vec3 corner(p.x >= 0.0f ? high.x : low.x, p.y >= 0.0f ? high.y : low.y,
+                               p.z >= 0.0f ? high.z : low.z);
+        if (glm::dot(glm::vec3(p), corner) + p.w < 0.0f) return false;
+    }
+    return true;
+}
+
+namespace {
+
+template <typename Distance>
+bool clipSegment(glm::vec4& a, glm::vec4& b, Distance distance) {
+    const float da = distance(a), db = distance(b);
+    if (da < 0.0f && db < 0.0f) return false;
+    if (da < 0.0f) a = a + (b - a) * (da / (da - db));
+    else if (db < 0.0f) b = b + (a - b) * (db / (db - da));
+    return true;
+}
+
+}  // namespace
+
+ProjectedBox projectBox(const scenes::Bounds& box, const glm::mat4& mvp, int width, int height) {
+    assert(width > 0 && height > 0);
+    ProjectedBox result;
+    if (box.empty()) return result;
+    glm::vec4 corners[8];
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
+                          (corner & 4) ? box.max.z : box.min.z);
+        corners[corner] = mvp * glm::vec4(p, 1.0f);
+    }
+    // Same outline as timemodel::projectedPixels: the clipped box's vertices are its corners
+    // inside both planes plus the edges' crossings of them.
+    float minX = 1e30f, minY = 1e30f, maxX = -1e30f, maxY = -1e30f;
+    bool any = false;
+    auto nearDistance = [](const glm::vec4& p) { return p.z + p.w; };
+    auto farDistance = [](const glm::vec4& p) { return p.w - p.z; };
+    for (int a = 0; a < 8; ++a) {
+        for (int axis = 1; axis < 8; axis <<= 1) {
+            if (a & axis) continue;
+            glm::vec4 p = corners[a], q = corners[a | axis];
+            if (!clipSegment(p, q, nearDistance) || !clipSegment(p, q, farDistance)) continue;
+            for (const glm::vec4& point : {p, q}) {
+                if (point.w <= 0.0f) continue;
+                const float x = point.x / point.w, y = point.y / point.w;
+                minX = std::min(minX, x);
+                maxX = std::max(maxX, x);
+                minY = std::min(minY, y);
+                maxY = std::max(maxY, y);
+                any = true;
+            }
+        }
+    }
+    if (!any) return result;
+    const double scale = 0.25 * double(width) * double(height);
+    result.area = double(maxX - minX) * double(maxY - minY) * scale;
+    minX = std::max(minX, -1.0f);
+    minY = std::max(minY, -1.0f);
+    maxX = std::min(maxX, 1.0f);
+    maxY = std::min(maxY, 1.0f);
+    if (maxX > minX && maxY > minY) {
+        result.visibleArea = double(maxX - minX) * 0.5 * width * double(maxY - minY) * 0.5 * height;
+    }
+    return result;
+}
+
+// Canonical measurements of every level (Bounds mode).
+struct SceneIndex::Canonical {
+    static constexpr int kDirections = 14;
+    std::array<glm::vec3, kDirections> directions{};
+    std::vector<FrameFeatures> unseen;  // per (object, level)
+    // Per (object, level, direction): seen − unseen at the near size, its box area, and the
+    // exponent code per feature (0 → e = 0, 1 → ½, 2 → 1).
+    std::vector<FrameFeatures> seen;
+    std::vector<double> nearArea;
+    std::vector<std::array<std::uint8_t, kFeatureCount>> exponent;
+};
+
+SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode)
+    : mScene(scene), mWidth(width), mHeight(height), mMode(mode) {
+    assert(width > 0 && height > 0);
+    const int objects = int(scene.objects.size());
+    mShapes.reserve(objects);
+    mFirstLevel.reserve(objects + 1);
+    mRates.reserve(objects);
+    for (const scenes::Object& object : scene.objects) {
+        mFirstLevel.push_back(int(mSameBoundsAsPrevious.size()));
+        mShapes.push_back(objectShape(object));
+        std::vector<double> triangles;
+        for (std::size_t l = 0; l < object.levels.size(); ++l) {
+            triangles.push_back(double(object.levels[l].stats.triangles));
+            const bool same = l > 0 && object.levels[l].stats.bounds.min == object.levels[l - 1].stats.bounds.min &&
+                              object.levels[l].stats.bounds.max == object.levels[l - 1].stats.bounds.max;
+            mSameBoundsAsPrevious.push_back(same ? 1 : 0);
+        }
+        mRates.push_back(simplificationRates(triangles));
+        mMaxLevels = std::max(mMaxLevels, int(object.levels.size()));
+    }
+    mFirstLevel.push_back(int(mSameBoundsAsPrevious.size()));
+    // The combination-independent part, taken from the time model's own table so that it
+    // stays right whatever the model counts there.
+    scenes::Camera any;
+    if (!scene.views.empty()) any = scene.views.front();
+    mFrameConstant = timemodel::FeatureTable(scene, any, width, height).frameConstant();
+    if (mMode == FeatureMode::Bounds) measureCanonical();
+}
+
+SceneIndex::~SceneIndex() = default;
+
+void SceneIndex::measureCanonical() {
+    mCanonical = std::make_unique<Canonical>();
+    Canonical& c = *mCanonical;
+    int d = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+        for (float sign : {1.0f, -1.0f}) {
+            glm::vec3 v(0.0f);
+            v[axis] = sign;
+            c.directions[d++] = v;
+        }
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+        c.directions[d++] = glm::normalize(glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f,
+                                                     corner & 4 ? 1.0f : -1.0f));
+    }
+    const int levels = totalLevels();
+    c.unseen.resize(levels);
+    c.seen.resize(std::size_t(levels) * Canonical::kDirections);
+    c.nearArea.resize(c.seen.size());
+    c.exponent.resize(c.seen.size());
+    // The sphere fills the smaller viewport dimension at the near size; a quarter of the
+    // diameter (1/16 of the area) at the far size.
+    const double aspect = double(mWidth) / double(mHeight);
+    const double fovY = 40.0;
+    const double halfAngle = std::atan(std::min(1.0, aspect) * std::tan(glm::radians(fovY / 2.0)));
+    constexpr float kFarFactor = 4.0f;
+    scenes::Scene single;
+    for (int o = 0; o < objectCount(); ++o) {
+        single.objects.assign(1, mScene.objects[o]);
+        const ObjectShape& shape = mShapes[o];
+        const float radius = std::max(shape.radius, 1e-4f);
+        const float nearDistance = float(radius / std::sin(halfAngle));
+        auto cameraAt = [&](glm::vec3 direction, float distance) {
+            scenes::Camera camera;
+            camera.position = shape.center + direction * distance;
+            camera.target = shape.center;
+            camera.fovYDegrees = float(fovY);
+            camera.nearPlane = std::max(distance - 1.5f * radius, distance * 1e-3f);
+            camera.farPlane = distance + 1.5f * radius;
+            return camera;
+        };
+        scenes::Camera away = cameraAt(glm::vec3(0.0f, 0.0f, 1.0f), nearDistance);
+        away.target = away.position + glm::vec3(0.0f, 0.0f, nearDistance);  // looking away
+        const timemodel::FeatureTable unseen(single, away, mWidth, mHeight);
+        const int count = levelCount(o);
+        for (int l = 0; l < count; ++l) c.unseen[mFirstLevel[o] + l] = unseen.contribution(0, l);
+        for (int k = 0; k < Canonical::kDirections; ++k) {
+            const scenes::Camera nearCamera = cameraAt(c.directions[k], nearDistance);
+            const scenes::Camera farCamera = cameraAt(c.directions[k], nearDistance * kFarFactor);
+            const timemodel::FeatureTable nearTable(single, nearCamera, mWidth, mHeight);
+            const timemodel::FeatureTable farTable(single, farCamera, mWidth, mHeight);
+            const glm::mat4 nearVp = scenes::projectionMatrix(nearCamera, float(aspect)) * scenes::viewMatrix(nearCamera);
+            const glm::mat4 farVp = scenes::projectionMatrix(farCamera, float(aspect)) * scenes::viewMatrix(farCamera);
+            for (int l = 0; l < count; ++l) {
+                const int index = mFirstLevel[o] + l;
+                const std::size_t slot = std::size_t(index) * Canonical::kDirections + k;
+                const scenes::Bounds& box = mScene.objects[o].levels[l].stats.bounds;
+                const double nearArea = projectBox(box, nearVp * shape.transform, mWidth, mHeight).area;
+                const double farArea = projectBox(box, farVp * shape.transform, mWidth, mHeight).area;
+                const FrameFeatures w = nearTable.contribution(0, l) - c.unseen[index];
+                const FrameFeatures wFar = farTable.contribution(0, l) - c.unseen[index];
+                c.seen[slot] = w;
+                c.nearArea[slot] = nearArea;
+                for (std::size_t f = 0; f < kFeatureCount; ++f) {
+                    std::uint8_t code = 0;
+                    const double a = w.values[f], b = wFar.values[f];
+                    if (a > 0.0 && nearArea > 0.0 && farArea > 0.0 && nearArea > farArea) {
+                        // Power of the change with the box area between the two sizes, rounded
+                        // to 0, ½ or 1; a feature that vanishes at the far size scales fully.
+                        const double e = b > 0.0 ? std::log(a / b) / std::log(nearArea / farArea) : 1.0;
+                        code = e < 0.25 ? 0 : (e < 0.75 ? 1 : 2);
+                    }
+                    c.exponent[slot][f] = code;
+                }
+            }
+        }
+    }
+}
+
+void SceneIndex::beginFrame(const scenes::Camera& camera, FrameObjects& out) const {
+    out.camera = camera;
+    out.viewProjection =
+        scenes::projectionMatrix(camera, float(mWidth) / float(mHeight)) * scenes::viewMatrix(camera);
+    out.frustum = Frustum::fromViewProjection(out.viewProjection);
+    out.visible.assign(mShapes.size(), 0);
+    out.views.resize(mShapes.size());
+    out.contributions.resize(std::size_t(totalLevels()));
+    if (mMode == FeatureMode::Exact) out.table = std::make_shared<timemodel::FeatureTable>(mScene, camera, mWidth, mHeight);
+}
+
+bool SceneIndex::observe(int object, FrameObjects& out) const {
+    assert(object >= 0 && object < objectCount());
+    const ObjectShape& shape = mShapes[object];
+    if (shape.radius <= 0.0f || !out.frustum.intersectsSphere(shape.center, shape.radius)) return false;
+    out.visible[object] = 1;
+    out.views[object] = scheduler::observe(shape, out.camera, out.viewProjection, mWidth, mHeight);
+    const int first = mFirstLevel[object];
+    const int count = levelCount(object);
+    if (mMode == FeatureMode::Exact) {
+        for (int l = 0; l < count; ++l) out.contributions[first + l] = out.table->contribution(object, l);
+        return true;
+    }
+    const Canonical& c = *mCanonical;
+    // The canonical direction nearest to the eye as seen from the object.
+    glm::vec3 toEye = out.camera.position - shape.center;
+    const float length = glm::length(toEye);
+    toEye = length > 0.0f ? toEye / length : glm::vec3(0.0f, 0.0f, 1.0f);
+    int best = 0;
+    float bestDot = -2.0f;
+    for (int k = 0; k < Canonical::kDirections; ++k) {
+        const float dot = glm::dot(c.directions[k], toEye);
+        if (dot > bestDot) {
+            bestDot = dot;
+            best = k;
+        }
+    }
+    const glm::mat4 mvp = out.viewProjection * shape.transform;
+    const scenes::Object& sceneObject = mScene.objects[object];
+    ProjectedBox box;
+    for (int l = 0; l < count; ++l) {
+        const int index = first + l;
+        if (!mSameBoundsAsPrevious[index]) box = projectBox(sceneObject.levels[l].stats.bounds, mvp, mWidth, mHeight);
+        FrameFeatures& f = out.contributions[index];
+        f = c.unseen[index];
+        const std::size_t slot = std::size_t(index) * Canonical::kDirections + best;
+        if (box.area <= 0.0 || box.visibleArea <= 0.0 || c.nearArea[slot] <= 0.0) continue;
+        const double share = box.visibleArea / box.area;
+        const double ratio = box.area / c.nearArea[slot];
+        const double scale[3] = {share, share * std::sqrt(ratio), share * ratio};
+        const FrameFeatures& w = c.seen[slot];
+        const auto& exponent = c.exponent[slot];
+        for (std::size_t k = 0; k < kFeatureCount; ++k) f.values[k] += w.values[k] * scale[exponent[k]];
+    }
+    return true;
+}
+
+}  // namespace lodopt::scheduler

@@ -1,0 +1,275 @@
+// The real-time scheduler's frame loop and its flat organisation: Dong, Liu, Xia, Fan & Zhang
+// 2015, "A time-critical adaptive approach for visualizing natural scenes on different
+// devices", PLoS ONE 10(2), §2.4 (importance-ordered raising and lowering, eq. 9 feedback),
+// with VMI20 §7's switch control. The tile organisation is in tile_selection.cpp.
+#include "scheduler/scheduler.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "scheduler_work.hpp"
+
+namespace lodopt::scheduler {
+
+const char* toString(Organisation organisation) { return organisation == Organisation::Tiles ? "tiles" : "flat"; }
+
+void validateParameters(const SchedulerParameters& p, int objectCount) {
+    if (!std::isfinite(p.budgetMs) || p.budgetMs <= 0.0) {
+        throw std::invalid_argument("scheduler: budget = " + std::to_string(p.budgetMs) + " ms, must be finite and > 0");
+    }
+    validateCoefficients(p.coefficients.importance);
+    validateThresholds(p.coefficients.thresholds);
+    const Benchmark& b = p.coefficients.benchmark;
+    if (b.view) {
+        const ObjectView& v = *b.view;
+        if (!(v.distance >= 0.0) || !(v.viewAngleRadians >= 0.0 && v.viewAngleRadians < 1.5707963267948966) ||
+            !(v.projectedArea > 0.0) || !(v.projectedPixels >= 0.0) || !(v.centerOffset >= 0.0)) {
+            throw std::invalid_argument(
+                "scheduler: the benchmark object needs distance >= 0, angle in [0, 90°), area > 0, pixels >= 0, "
+                "centre offset >= 0");
+        }
+        if (!(importanceDenominator(v, p.coefficients.importance) > 0.0)) {
+            throw std::invalid_argument("scheduler: the benchmark object has a zero denominator (B = 0)");
+        }
+    } else if (!std::isfinite(b.scale) || b.scale <= 0.0) {
+        throw std::invalid_argument("scheduler: benchmark scale = " + std::to_string(b.scale) +
+                                    ", must be finite and > 0");
+    }
+    if (!p.objectWeights.empty()) {
+        if (int(p.objectWeights.size()) != objectCount) {
+            throw std::invalid_argument("scheduler: " + std::to_string(p.objectWeights.size()) +
+                                        " object weights for " + std::to_string(objectCount) + " objects");
+        }
+        for (std::size_t o = 0; o < p.objectWeights.size(); ++o) {
+            if (!std::isfinite(p.objectWeights[o]) || p.objectWeights[o] <= 0.0) {
+                throw std::invalid_argument("scheduler: objectWeights[" + std::to_string(o) +
+                                            "] = " + std::to_string(p.objectWeights[o]) + ", must be finite and > 0");
+            }
+        }
+    }
+    validateSwitchControl(p.switchControl);
+    const timemodel::FeedbackParameters& f = p.feedback;
+    if (!(f.beta > 0.0 && f.beta < 1.0) || !(f.maxRelativeError > 0.0 && f.maxRelativeError <= 1.0) ||
+        !(f.maxDrift >= 1.0 && std::isfinite(f.maxDrift))) {
+        throw std::invalid_argument("scheduler: feedback needs 0 < beta < 1, 0 < maxRelativeError <= 1, "
+                                    "1 <= maxDrift < inf");
+    }
+    if (!(p.coarsestShare > 0.0 && p.coarsestShare <= 1.0)) {
+        throw std::invalid_argument("scheduler: coarsestShare = " + std::to_string(p.coarsestShare) +
+                                    ", must be in (0, 1]");
+    }
+}
+
+FrameScheduler::FrameScheduler(const SceneIndex& index, std::unique_ptr<timemodel::TimeModel> model,
+                               SchedulerParameters parameters)
+    : mIndex(index), mModel(std::move(model)), mParameters(std::move(parameters)), mWork(std::make_unique<Work>()) {
+    assert(mModel && mModel->fitted());
+    validateParameters(mParameters, index.objectCount());
+    std::vector<ObjectShape> shapes;
+    if (mParameters.organisation == Organisation::Tiles) {
+        for (int o = 0; o < index.objectCount(); ++o) shapes.push_back(index.shape(o));
+        mQuadtree = std::make_unique<Quadtree>(shapes, mParameters.quadtree);
+    }
+    const std::size_t n = std::size_t(index.objectCount());
+    mImportance.assign(n, 0.0);
+    mInitial.assign(n, scenes::kNotDrawn);
+    mPrevious.assign(n, scenes::kNotDrawn);
+    mLastSwitchTime.assign(n, -std::numeric_limits<double>::infinity());
+    mRange.assign(n, LevelRange{});
+    mDecision.levels.assign(n, scenes::kNotDrawn);
+    mWork->reserve(n);
+}
+
+FrameScheduler::~FrameScheduler() = default;
+
+void FrameScheduler::reset() {
+    std::fill(mPrevious.begin(), mPrevious.end(), scenes::kNotDrawn);
+    std::fill(mLastSwitchTime.begin(), mLastSwitchTime.end(), -std::numeric_limits<double>::infinity());
+    mHavePrevious = false;
+}
+
+void FrameScheduler::setCoefficients(const SchedulerCoefficients& coefficients) {
+    SchedulerParameters changed = mParameters;
+    changed.coefficients = coefficients;
+    validateParameters(changed, mIndex.objectCount());
+    mParameters = std::move(changed);
+}
+
+void FrameScheduler::setBudgetMs(double budgetMs) {
+    assert(std::isfinite(budgetMs) && budgetMs > 0.0);
+    mParameters.budgetMs = budgetMs;
+}
+
+timemodel::FeedbackResult FrameScheduler::reportMeasuredMs(double measuredMs) {
+    return mModel->applyFeedback(mDecision.features, measuredMs, mParameters.feedback);
+}
+
+const timemodel::FrameFeatures& FrameScheduler::contribution(int object, int level) const {
+    return mFrame.contributions[std::size_t(mIndex.firstLevel(object) + level)];
+}
+
+void FrameScheduler::setLevel(int object, int level) {
+    int& current = mDecision.levels[object];
+    if (current == level) return;
+    if (current != scenes::kNotDrawn) mDecision.features -= contribution(object, current);
+    if (level != scenes::kNotDrawn) mDecision.features += contribution(object, level);
+    current = level;
+}
+
+const FrameDecision& FrameScheduler::decide(const scenes::Camera& camera, double timeSeconds) {
+    FrameDecision& d = mDecision;
+    std::fill(d.levels.begin(), d.levels.end(), scenes::kNotDrawn);
+    d.features = mIndex.frameConstant();
+    d.predictedMs = d.minimumMs = 0.0;
+    d.budgetReachable = d.budgetMet = false;
+    d.visibleObjects = d.culledObjects = d.droppedObjects = 0;
+    d.protectedLowered = d.forcedSwitches = d.switches = d.heldObjects = 0;
+    std::fill(mImportance.begin(), mImportance.end(), 0.0);
+    std::fill(mInitial.begin(), mInitial.end(), scenes::kNotDrawn);
+
+    mIndex.beginFrame(camera, mFrame);
+    if (mQuadtree) observeTiles();
+    else observeFlat();
+    computeImportanceAndRanges(timeSeconds);
+    // The cheapest frame without dropping: every visible object at its coarsest level.
+    timemodel::FrameFeatures minimum = mIndex.frameConstant();
+    for (int o : mWork->visible) minimum += contribution(o, mIndex.levelCount(o) - 1);
+    d.minimumMs = estimate(minimum);
+    if (mQuadtree) decideTiles();
+    else decideFlat();
+    finishFrame(timeSeconds);
+    return d;
+}
+
+void FrameScheduler::observeFlat() {
+    Work& w = *mWork;
+    w.visible.clear();
+    for (int o = 0; o < mIndex.objectCount(); ++o) {
+        if (mIndex.observe(o, mFrame)) w.visible.push_back(o);
+    }
+}
+
+void FrameScheduler::computeImportanceAndRanges(double timeSeconds) {
+    Work& w = *mWork;
+    const SchedulerCoefficients& c = mParameters.coefficients;
+    w.denominators.clear();
+    for (int o : w.visible) w.denominators.push_back(importanceDenominator(mFrame.views[o], c.importance));
+    double benchmark = 1.0;
+    if (c.benchmark.view) {
+        benchmark = importanceDenominator(*c.benchmark.view, c.importance);
+    } else if (!w.visible.empty()) {
+        w.scratch.assign(w.denominators.begin(), w.denominators.end());
+        const std::size_t middle = w.scratch.size() / 2;
+        std::nth_element(w.scratch.begin(), w.scratch.begin() + middle, w.scratch.end());
+        double median = w.scratch[middle];
+        if (w.scratch.size() % 2 == 0) {
+            median = 0.5 * (median + *std::max_element(w.scratch.begin(), w.scratch.begin() + middle));
+        }
+        benchmark = median * c.benchmark.scale;
+        if (!(benchmark > 0.0)) benchmark = 1.0;  // every visible object at the eye: all infinitely important
+    }
+    const SwitchControlParameters& control = mParameters.switchControl;
+    for (std::size_t i = 0; i < w.visible.size(); ++i) {
+        const int o = w.visible[i];
+        const double weight = mParameters.objectWeights.empty() ? 1.0 : mParameters.objectWeights[o];
+        const double denominator = w.denominators[i];
+        mImportance[o] = denominator > 0.0 ? weight * benchmark / denominator : std::numeric_limits<double>::infinity();
+        const int levels = mIndex.levelCount(o);
+        const double radius = std::max(double(mIndex.shape(o).radius), 1e-9);
+        const double x = c.thresholds.relativeToRadius ? mFrame.views[o].distance / radius : mFrame.views[o].distance;
+        LevelRange range{0, levels - 1};
+        if (control.enabled && mHavePrevious && mPrevious[o] != scenes::kNotDrawn) {
+            range = allowedLevels(mPrevious[o], timeSeconds - mLastSwitchTime[o], x, mIndex.rates(o), control);
+            if (range.finest == range.coarsest && levels > 1) ++mDecision.heldObjects;
+        }
+        mRange[o] = range;
+        mInitial[o] = std::clamp(distanceLevel(x, c.thresholds.values, levels), range.finest, range.coarsest);
+    }
+}
+
+void FrameScheduler::decideFlat() {
+    Work& w = *mWork;
+    FrameDecision& d = mDecision;
+    const double budget = mParameters.budgetMs;
+    for (int o : w.visible) setLevel(o, mInitial[o]);
+    double ms = estimate(d.features);
+    w.order.assign(w.visible.begin(), w.visible.end());
+    if (ms <= budget) {
+        // Decreasing importance; ties by object index so the decision is deterministic.
+        std::sort(w.order.begin(), w.order.end(), [&](int a, int b) {
+            return mImportance[a] != mImportance[b] ? mImportance[a] > mImportance[b] : a < b;
+        });
+        for (int o : w.order) {
+            while (d.levels[o] > mRange[o].finest) {
+                const int level = d.levels[o];
+                w.trial = d.features;
+                w.trial += contribution(o, level - 1);
+                w.trial -= contribution(o, level);
+                const double raised = estimate(w.trial);
+                if (raised > budget) break;  // this object's next step does not fit: try the next
+                setLevel(o, level - 1);
+                ms = raised;
+            }
+        }
+    } else {
+        std::sort(w.order.begin(), w.order.end(), [&](int a, int b) {
+            return mImportance[a] != mImportance[b] ? mImportance[a] < mImportance[b] : a < b;
+        });
+        const bool protect = mParameters.protectImportant;
+        // Passes a-d of the header: unprotected within range, unprotected beyond, protected
+        // within range, protected beyond.
+        for (int pass = 0; pass < 4 && ms > budget; ++pass) {
+            const bool protectedPass = pass >= 2;
+            if (protectedPass && !protect) break;
+            const bool beyondRange = pass % 2 == 1;
+            for (int o : w.order) {
+                if (ms <= budget) break;
+                const bool important = mImportance[o] > 1.0;
+                if (protect && important != protectedPass) continue;
+                const int limit = beyondRange ? mIndex.levelCount(o) - 1 : mRange[o].coarsest;
+                while (ms > budget && d.levels[o] < limit) {
+                    setLevel(o, d.levels[o] + 1);
+                    ms = estimate(d.features);
+                }
+            }
+        }
+    }
+    for (int o : w.visible) {
+        if (mImportance[o] > 1.0 && d.levels[o] > mInitial[o]) ++d.protectedLowered;
+    }
+}
+
+void FrameScheduler::finishFrame(double timeSeconds) {
+    FrameDecision& d = mDecision;
+    const Work& w = *mWork;
+    // Recomputed from scratch so that the incremental sums leave no rounding drift.
+    d.features = mIndex.frameConstant();
+    int drawn = 0;
+    for (int o = 0; o < mIndex.objectCount(); ++o) {
+        const int level = d.levels[o];
+        if (level == scenes::kNotDrawn) continue;
+        ++drawn;
+        d.features += contribution(o, level);
+        if (level > mRange[o].coarsest || level < mRange[o].finest) ++d.forcedSwitches;
+        if (mHavePrevious && mPrevious[o] != scenes::kNotDrawn && mPrevious[o] != level) {
+            ++d.switches;
+            mLastSwitchTime[o] = timeSeconds;
+        }
+    }
+    d.predictedMs = estimate(d.features);
+    d.visibleObjects = int(w.visible.size());
+    d.culledObjects = mIndex.objectCount() - d.visibleObjects;
+    d.droppedObjects = d.visibleObjects - drawn;
+    // A relative slack of 1e-9 absorbs the rounding between incremental and fresh sums.
+    const double slack = 1e-9 * std::max(1.0, mParameters.budgetMs);
+    d.budgetMet = d.predictedMs <= mParameters.budgetMs + slack;
+    d.budgetReachable = d.minimumMs <= mParameters.budgetMs + slack;
+    std::copy(d.levels.begin(), d.levels.end(), mPrevious.begin());
+    mHavePrevious = true;
+}
+
+}  // namespace lodopt::scheduler

@@ -1,0 +1,101 @@
+// Tile organisation of the scheduler: the quadtree walk and the two-phase selection of
+// "A virtual globe-based time-critical adaptive visualization method for 3D city models",
+// Int. J. Digital Earth 2017 (CITY17), Algorithms 1 and 2 (method.md §6). See scheduler.hpp.
+#include <algorithm>
+#include <cmath>
+
+#include "scheduler/scheduler.hpp"
+#include "scheduler_work.hpp"
+
+namespace lodopt::scheduler {
+
+void FrameScheduler::observeTiles() {
+    Work& w = *mWork;
+    w.visible.clear();
+    w.leafEnds.clear();
+    // Culled tiles take their objects with them: those objects are never looked at.
+    mQuadtree->visibleLeaves(mFrame.frustum, mFrame.camera.position, w.leaves, w.leafDistance);
+    const std::vector<int>& objects = mQuadtree->objects();
+    for (int leaf : w.leaves) {
+        const Quadtree::Tile& tile = mQuadtree->tiles()[leaf];
+        for (int k = tile.firstObject; k < tile.firstObject + tile.objectCount; ++k) {
+            if (mIndex.observe(objects[k], mFrame)) w.visible.push_back(objects[k]);
+        }
+        w.leafEnds.push_back(int(w.visible.size()));
+    }
+}
+
+void FrameScheduler::decideTiles() {
+    Work& w = *mWork;
+    FrameDecision& d = mDecision;
+    const double budget = mParameters.budgetMs;
+    // Within each leaf (already nearest first), decreasing importance.
+    w.order.assign(w.visible.begin(), w.visible.end());
+    int begin = 0;
+    for (int end : w.leafEnds) {
+        std::sort(w.order.begin() + begin, w.order.begin() + end, [&](int a, int b) {
+            return mImportance[a] != mImportance[b] ? mImportance[a] > mImportance[b] : a < b;
+        });
+        begin = end;
+    }
+
+    // Algorithm 1: add objects at their coarsest allowed level while the budget lasts.
+    double ms = estimate(d.features);
+    int drawn = 0;
+    for (int o : w.order) {
+        const int level = mRange[o].coarsest;
+        w.trial = d.features;
+        w.trial += contribution(o, level);
+        const double added = estimate(w.trial);
+        if (added > budget) break;
+        setLevel(o, level);
+        ms = added;
+        ++drawn;
+    }
+
+    // Algorithm 2: raise toward the distance level; when a step does not fit, stop there or
+    // drop the last drawn objects, whichever loses fewer pixels.
+    const int coarsestLimit = std::max(1, int(std::ceil(mParameters.coarsestShare * drawn)));
+    int atCoarsest = 0;
+    int end = drawn;  // w.order[end..] are not drawn
+    for (int i = 0; i < end; ++i) {
+        if (atCoarsest >= coarsestLimit) break;  // the rest stay coarsest
+        const int o = w.order[i];
+        const int target = mInitial[o];  // already within the switch control's range
+        const std::vector<double>& rates = mIndex.rates(o);
+        const double pixels = mFrame.views[o].projectedPixels;
+        while (d.levels[o] > target) {
+            const int level = d.levels[o];
+            w.trial = d.features;
+            w.trial += contribution(o, level - 1);
+            w.trial -= contribution(o, level);
+            double raised = estimate(w.trial);
+            if (raised <= budget) {
+                setLevel(o, level - 1);
+                ms = raised;
+                continue;
+            }
+            const double stayLoss = pixels * (rates[level] - rates[level - 1]);
+            double dropLoss = 0.0;
+            int k = end;
+            while (k > i + 1 && raised > budget) {
+                --k;
+                w.trial -= contribution(w.order[k], d.levels[w.order[k]]);
+                dropLoss += mFrame.views[w.order[k]].projectedPixels;
+                raised = estimate(w.trial);
+            }
+            if (raised > budget || !(dropLoss < stayLoss)) break;  // stop at this level
+            for (int j = k; j < end; ++j) setLevel(w.order[j], scenes::kNotDrawn);
+            end = k;
+            setLevel(o, level - 1);
+            ms = estimate(d.features);
+        }
+        if (d.levels[o] == mIndex.levelCount(o) - 1) ++atCoarsest;
+    }
+    (void)ms;
+    for (int o : w.visible) {
+        if (d.levels[o] != scenes::kNotDrawn && mImportance[o] > 1.0 && d.levels[o] > mInitial[o]) ++d.protectedLowered;
+    }
+}
+
+}  // namespace lodopt::scheduler

@@ -1,0 +1,245 @@
+// The frame scheduler (DONG15 §2.4 flat, CITY17 tiles) on scenes made of blobs, with a time
+// model that counts triangles, so every prediction can be checked by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <set>
+
+#include "fixtures.hpp"
+#include "scheduler/scheduler.hpp"
+
+namespace lodopt::scheduler {
+namespace {
+
+constexpr double kMsPerTriangle = 1e-3;
+constexpr double kInterceptMs = 0.5;
+
+double trianglesMs(const scenes::Scene& scene, const scenes::Combination& levels) {
+    double triangles = 0.0;
+    for (std::size_t o = 0; o < levels.size(); ++o) {
+        if (levels[o] != scenes::kNotDrawn) triangles += double(scene.objects[o].levels[levels[o]].stats.triangles);
+    }
+    return kInterceptMs + kMsPerTriangle * triangles;
+}
+
+std::vector<scenes::Camera> orbit(int frames, float radius, float height) {
+    std::vector<scenes::Camera> cameras;
+    for (int f = 0; f < frames; ++f) {
+        const float angle = 6.2831853f * float(f) / float(frames);
+        cameras.push_back(testing::lookAt(glm::vec3(radius * std::cos(angle), height, radius * std::sin(angle)),
+                                          glm::vec3(0.0f, 1.0f, 0.0f)));
+    }
+    return cameras;
+}
+
+// Three blobs on the z axis at 10, 20 and 40 units from the eye.
+scenes::Scene rowScene() {
+    scenes::Scene scene;
+    scene.objects.push_back(testing::makeBlob("near", {0, 0, -10}, 1.0f));
+    scene.objects.push_back(testing::makeBlob("middle", {0, 0, -20}, 1.0f));
+    scene.objects.push_back(testing::makeBlob("far", {0, 0, -40}, 1.0f));
+    scenes::updateStatistics(scene);
+    return scene;
+}
+const scenes::Camera kRowCamera = testing::lookAt({0, 1.5f, 0}, {0, 1.5f, -10});
+
+double levelTriangles(const scenes::Scene& scene, int level) {
+    return double(scene.objects[0].levels[level].stats.triangles);
+}
+
+TEST(Scheduler, MeetsTheBudgetWheneverReachable) {
+    const scenes::Scene scene = testing::makeGridScene(8, 8, 6.0f);
+    const SceneIndex index(scene, 128, 96, FeatureMode::Bounds);
+    for (Organisation organisation : {Organisation::Flat, Organisation::Tiles}) {
+        SchedulerParameters p;
+        p.organisation = organisation;
+        p.switchControl.enabled = false;
+        FrameScheduler scheduler(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+        int reachable = 0, unreachable = 0;
+        for (const scenes::Camera& camera : orbit(24, 40.0f, 12.0f)) {
+            for (double budget : {1.0, 5.0, 12.0, 25.0, 60.0, 1000.0}) {
+                scheduler.setBudgetMs(budget);
+                scheduler.reset();
+                const FrameDecision& d = scheduler.decide(camera, 0.0);
+                // The prediction is the model's for exactly these levels.
+                EXPECT_NEAR(d.predictedMs, trianglesMs(scene, d.levels), 1e-9);
+                if (d.budgetReachable) {
+                    ++reachable;
+                    EXPECT_TRUE(d.budgetMet) << toString(organisation) << " budget " << budget;
+                    EXPECT_LE(d.predictedMs, budget + 1e-9);
+                } else {
+                    ++unreachable;
+                    if (organisation == Organisation::Flat) {
+                        EXPECT_FALSE(d.budgetMet);
+                        for (std::size_t o = 0; o < d.levels.size(); ++o) {  // everything coarsest
+                            if (d.levels[o] != scenes::kNotDrawn) {
+                                EXPECT_EQ(d.levels[o], 2);
+                            }
+                        }
+                    } else {
+                        EXPECT_TRUE(d.budgetMet);  // tiles drop objects instead
+                        EXPECT_GT(d.droppedObjects, 0);
+                    }
+                }
+                EXPECT_EQ(d.visibleObjects + d.culledObjects, int(scene.objects.size()));
+            }
+        }
+        EXPECT_GT(reachable, 0);
+        EXPECT_GT(unreachable, 0);
+    }
+}
+
+TEST(Scheduler, CullsObjectsOutsideTheFrustum) {
+    const scenes::Scene scene = rowScene();
+    const SceneIndex index(scene, 64, 64, FeatureMode::Bounds);
+    SchedulerParameters p;
+    p.budgetMs = 1e6;
+    FrameScheduler scheduler(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+    // Looking away from the row: nothing drawn.
+    const FrameDecision& away = scheduler.decide(testing::lookAt({0, 1.5f, 0}, {0, 1.5f, 10}), 0.0);
+    EXPECT_EQ(away.visibleObjects, 0);
+    EXPECT_EQ(away.culledObjects, 3);
+    for (int level : away.levels) EXPECT_EQ(level, scenes::kNotDrawn);
+    const FrameDecision& toward = scheduler.decide(kRowCamera, 1.0);
+    EXPECT_EQ(toward.visibleObjects, 3);
+    for (int level : toward.levels) EXPECT_EQ(level, 0);  // a loose budget raises all to level 0
+}
+
+TEST(Scheduler, RaisesInDecreasingImportance) {
+    const scenes::Scene scene = rowScene();
+    const SceneIndex index(scene, 64, 64, FeatureMode::Bounds);
+    SchedulerParameters p;
+    p.coefficients.thresholds.values = {0.5, 1.0};  // every object starts at its coarsest level
+    p.switchControl.enabled = false;
+    // Room for one object to go from level 2 to level 0, not two.
+    p.budgetMs = kInterceptMs + kMsPerTriangle * (3 * levelTriangles(scene, 2) + levelTriangles(scene, 0) -
+                                                  levelTriangles(scene, 2) + 1.0);
+    FrameScheduler scheduler(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+    const FrameDecision& d = scheduler.decide(kRowCamera, 0.0);
+    EXPECT_GT(scheduler.importances()[0], scheduler.importances()[1]);
+    EXPECT_GT(scheduler.importances()[1], scheduler.importances()[2]);
+    EXPECT_EQ(d.levels, (scenes::Combination{0, 2, 2}));
+    EXPECT_TRUE(d.budgetMet);
+}
+
+TEST(Scheduler, LowersImportantObjectsOnlyWhenUnavoidable) {
+    const scenes::Scene scene = rowScene();
+    const SceneIndex index(scene, 64, 64, FeatureMode::Bounds);
+    SchedulerParameters p;
+    p.coefficients.thresholds.values = {1e5, 2e5};  // every object starts at level 0
+    p.switchControl.enabled = false;
+    FrameScheduler scheduler(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+    // Median benchmark: near I > 1, middle I = 1, far I < 1.
+    const double t0 = levelTriangles(scene, 0), t2 = levelTriangles(scene, 2);
+    // Lowering far and middle to coarsest is enough: near (I > 1) keeps level 0.
+    scheduler.setBudgetMs(kInterceptMs + kMsPerTriangle * (t0 + 2 * t2));
+    const FrameDecision& enough = scheduler.decide(kRowCamera, 0.0);
+    EXPECT_GT(scheduler.importances()[0], 1.0);
+    EXPECT_EQ(enough.levels, (scenes::Combination{0, 2, 2}));
+    EXPECT_EQ(enough.protectedLowered, 0);
+    // A tighter budget: the near object must be lowered too, and that is reported.
+    scheduler.setBudgetMs(kInterceptMs + kMsPerTriangle * (levelTriangles(scene, 1) + 2 * t2));
+    const FrameDecision& tight = scheduler.decide(kRowCamera, 1.0);
+    EXPECT_EQ(tight.levels, (scenes::Combination{1, 2, 2}));
+    EXPECT_EQ(tight.protectedLowered, 1);
+    EXPECT_TRUE(tight.budgetMet);
+    // Without protection the least important objects still go first, the order is the same.
+    p.protectImportant = false;
+    FrameScheduler unprotected(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+    unprotected.setBudgetMs(kInterceptMs + kMsPerTriangle * (t0 + 2 * t2));
+    EXPECT_EQ(unprotected.decide(kRowCamera, 0.0).levels, (scenes::Combination{0, 2, 2}));
+}
+
+TEST(Scheduler, FeedbackStaysBoundedAndMakesFramesCheaper) {
+    const scenes::Scene scene = testing::makeGridScene(4, 4, 5.0f);
+    const SceneIndex index(scene, 96, 96, FeatureMode::Bounds);
+    SchedulerParameters p;
+    p.switchControl.enabled = false;
+    p.feedback.beta = 0.5;
+    p.feedback.maxDrift = 4.0;
+    const scenes::Camera camera = testing::lookAt({0, 15, 25}, {0, 0, 0});
+    FrameScheduler scheduler(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+    scheduler.setBudgetMs(1e6);
+    const double finest = scheduler.decide(camera, 0.0).predictedMs;
+    scheduler.setBudgetMs(0.5 * finest);
+    const FrameDecision& first = scheduler.decide(camera, 0.0);
+    const int firstSum = std::accumulate(first.levels.begin(), first.levels.end(), 0);
+    // The frame always measures 10x its prediction: the scale climbs to maxDrift, no further.
+    for (int frame = 0; frame < 40; ++frame) {
+        const FrameDecision& d = scheduler.decide(camera, frame / 30.0);
+        const timemodel::FeedbackResult r = scheduler.reportMeasuredMs(10.0 * d.predictedMs);
+        EXPECT_TRUE(r.applied);
+        EXPECT_LE(scheduler.model().feedbackScale(), 4.0 + 1e-12);
+    }
+    EXPECT_NEAR(scheduler.model().feedbackScale(), 4.0, 1e-9);
+    // The model now predicts 4x: the same view gets coarser levels for the same budget.
+    const FrameDecision& later = scheduler.decide(camera, 2.0);
+    EXPECT_GT(std::accumulate(later.levels.begin(), later.levels.end(), 0), firstSum);
+    // Unusable measurements are ignored.
+    EXPECT_FALSE(scheduler.reportMeasuredMs(std::nan("")).applied);
+    EXPECT_FALSE(scheduler.reportMeasuredMs(-1.0).applied);
+    // Ten times too slow the other way: the scale drops to 1/maxDrift, no further.
+    for (int frame = 0; frame < 80; ++frame) {
+        const FrameDecision& d = scheduler.decide(camera, 3.0 + frame / 30.0);
+        scheduler.reportMeasuredMs(0.1 * d.predictedMs);
+        EXPECT_GE(scheduler.model().feedbackScale(), 0.25 - 1e-12);
+    }
+    EXPECT_NEAR(scheduler.model().feedbackScale(), 0.25, 1e-9);
+}
+
+TEST(Scheduler, SameInputsSameDecisions) {
+    const scenes::Scene scene = testing::makeGridScene(6, 6, 5.0f);
+    const SceneIndex index(scene, 96, 96, FeatureMode::Bounds);
+    for (Organisation organisation : {Organisation::Flat, Organisation::Tiles}) {
+        SchedulerParameters p;
+        p.organisation = organisation;
+        p.budgetMs = 8.0;
+        FrameScheduler a(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+        FrameScheduler b(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+        const std::vector<scenes::Camera> path = orbit(30, 25.0f, 8.0f);
+        for (std::size_t f = 0; f < path.size(); ++f) {
+            const FrameDecision da = a.decide(path[f], f / 30.0);
+            const FrameDecision& db = b.decide(path[f], f / 30.0);
+            EXPECT_EQ(da.levels, db.levels);
+            EXPECT_EQ(da.predictedMs, db.predictedMs);
+            EXPECT_EQ(da.switches, db.switches);
+            a.reportMeasuredMs(1.2 * da.predictedMs);
+            b.reportMeasuredMs(1.2 * db.predictedMs);
+        }
+    }
+}
+
+TEST(Scheduler, ExactAndBoundsFeaturesAgreeOnTriangles) {
+    const scenes::Scene scene = testing::makeGridScene(5, 5, 5.0f);
+    const SceneIndex bounds(scene, 96, 96, FeatureMode::Bounds);
+    const SceneIndex exact(scene, 96, 96, FeatureMode::Exact);
+    SchedulerParameters p;
+    p.budgetMs = 6.0;
+    FrameScheduler a(bounds, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+    FrameScheduler b(exact, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+    for (const scenes::Camera& camera : orbit(12, 20.0f, 6.0f)) {
+        const FrameDecision da = a.decide(camera, 0.0);
+        EXPECT_EQ(da.levels, b.decide(camera, 0.0).levels);
+    }
+}
+
+TEST(Scheduler, RejectsBadParameters) {
+    const scenes::Scene scene = rowScene();
+    const SceneIndex index(scene, 64, 64, FeatureMode::Bounds);
+    SchedulerParameters p;
+    p.budgetMs = 0.0;
+    EXPECT_THROW(FrameScheduler(index, testing::triangleModel(0, 1), p), std::invalid_argument);
+    p = {};
+    p.objectWeights = {1.0, 2.0};  // three objects
+    EXPECT_THROW(FrameScheduler(index, testing::triangleModel(0, 1), p), std::invalid_argument);
+    p = {};
+    p.coarsestShare = 0.0;
+    EXPECT_THROW(FrameScheduler(index, testing::triangleModel(0, 1), p), std::invalid_argument);
+    p = {};
+    p.coefficients.benchmark.scale = -1.0;
+    EXPECT_THROW(FrameScheduler(index, testing::triangleModel(0, 1), p), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lodopt::scheduler
