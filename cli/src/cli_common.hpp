@@ -45,5 +45,9 @@ void addCalibrateCommand(CLI::App& app);
 void addEstimateCommand(CLI::App& app);
 void addOptimizeCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
+void addTuneCommand(CLI::App& app);
+void addScheduleCommand(CLI::App& app);
+void addReportCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
 
 }  // namespace lodopt::cli

@@ -179,6 +179,26 @@ void runCalibrate(const CalibrateOptions& options) {
         throw std::runtime_error("no time model could be fitted:" + reasons);
     }
 
+    // The same draws judged by the other clocks: one run shows how much of the error is the
+    // model and how much the timing.
+    struct OtherClock {
+        std::string clock;
+        std::vector<timemodel::ModelResult> models;
+    };
+    std::vector<OtherClock> otherClocks;
+    for (const std::string& clock : timemodel::timingClockNames()) {
+        if (clock == options.clock) continue;
+        std::vector<timemodel::Sample> fitOther, heldOutOther;
+        for (const timemodel::ProfileSample& recorded : profile.samples) {
+            timemodel::Sample sample = recorded.sample;
+            sample.measuredMs = clock == "cpu"           ? recorded.cpuMs
+                                : clock == "wall-median" ? recorded.wallMedianMs
+                                                         : recorded.wallMinMs;
+            (recorded.heldOut ? heldOutOther : fitOther).push_back(sample);
+        }
+        otherClocks.push_back({clock, timemodel::fitAllModels(fitOther, heldOutOther)});
+    }
+
     profile.created = timemodel::currentDateUtc();
     profile.machine = timemodel::describeMachine();
     profile.glRenderer = renderer.glRendererString();
@@ -209,6 +229,17 @@ void runCalibrate(const CalibrateOptions& options) {
             entry["notes"] = r.fit.notes;
             models.push_back(entry);
         }
+        nlohmann::json otherJson = nlohmann::json::object();
+        for (const OtherClock& other : otherClocks) {
+            nlohmann::json entries = nlohmann::json::array();
+            for (const timemodel::ModelResult& r : other.models) {
+                entries.push_back({{"name", r.name},
+                                   {"fitted", r.fitted},
+                                   {"held_out_errors", errorsJson(r.heldOutErrors)},
+                                   {"fit_errors", errorsJson(r.fitErrors)}});
+            }
+            otherJson[other.clock] = entries;
+        }
         printJson({{"out", options.out},
                    {"scene", scene.name},
                    {"width", settings.width},
@@ -226,7 +257,8 @@ void runCalibrate(const CalibrateOptions& options) {
                    {"timing_spread_p90", spread.p90},
                    {"seconds", profile.timing.seconds},
                    {"default_model", profile.defaultModel},
-                   {"models", models}});
+                   {"models", models},
+                   {"other_clocks", otherJson}});
         return;
     }
     std::cout << "calibrated '" << scene.name << "' at " << settings.width << "x" << settings.height << " on "
@@ -243,6 +275,16 @@ void runCalibrate(const CalibrateOptions& options) {
     std::cout << line << timemodel::formatErrorTable(profile.models);
     for (const timemodel::ModelResult& r : profile.models) {
         for (const std::string& note : r.fit.notes) std::cout << "  note (" << r.name << "): " << note << "\n";
+    }
+    for (const OtherClock& other : otherClocks) {
+        std::cout << "same draws, clock " << other.clock << ":";
+        for (const timemodel::ModelResult& r : other.models) {
+            if (!r.fitted) continue;
+            std::snprintf(line, sizeof line, "  %s mean %.1f%% p90 %.1f%%", r.name.c_str(), 100.0 * r.heldOutErrors.mean,
+                          100.0 * r.heldOutErrors.p90);
+            std::cout << line;
+        }
+        std::cout << "\n";
     }
     std::snprintf(line, sizeof line, "wrote %s (%.1f s)\n", options.out.c_str(), profile.timing.seconds);
     std::cout << line;

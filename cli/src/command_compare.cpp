@@ -1,13 +1,23 @@
 // lodopt compare: several algorithms × seeds on one view, budget and evaluation budget
 // (the published GA-PSO vs PSO vs GA comparison, on our scenes).
+//
+// Each (algorithm, seed) run is one unit of work: after it, every finished run is saved in
+// <out>/compare.checkpoint.json (atomically) and an interrupt (SIGINT/SIGTERM) stops there;
+// --resume reuses the saved runs, so the outputs equal an uninterrupted run's (wall times
+// aside). The checkpoint is removed once compare.json, compare.csv and curves.csv are written.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
+#include <map>
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "interrupt.hpp"
 #include "optimize_run.hpp"
 #include "progress.hpp"
 #include "scenes/atomic_file.hpp"
@@ -37,6 +47,116 @@ std::int64_t evaluationsToReach(const optimizer::Result& result, double target) 
     return -1;
 }
 
+// The checkpoint stores doubles through JSON, which writes NaN as null.
+double numberOf(const nlohmann::json& value) {
+    return value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>();
+}
+
+nlohmann::json runToJson(const RunRecord& run) {
+    const optimizer::Result& result = run.result;
+    nlohmann::json log = nlohmann::json::array();
+    for (const optimizer::IterationLog& row : result.log) {
+        log.push_back({row.iteration, row.bestFitness, row.meanFitness, row.bestPredictedMs, row.evaluations,
+                       row.cacheHits, row.elapsedSeconds});
+    }
+    const auto& components = result.bestScore.components;
+    return {{"algorithm", run.algorithm},
+            {"seed", run.seed},
+            {"wall_seconds", run.wallSeconds},
+            {"best", result.best},
+            {"fitness", result.bestScore.fitness},
+            {"components", std::vector<double>(components.begin(), components.begin() + result.bestScore.componentCount)},
+            {"predicted_ms", result.predictedMs},
+            {"evaluations", result.evaluations},
+            {"cache_hits", result.cacheHits},
+            {"iterations", result.iterations},
+            {"stop_reason", std::string(optimizer::toString(result.stopReason))},
+            {"log", log}};
+}
+
+RunRecord runFromJson(const nlohmann::json& saved) {
+    RunRecord run;
+    run.algorithm = saved.at("algorithm").get<std::string>();
+    run.seed = saved.at("seed").get<std::uint64_t>();
+    run.wallSeconds = numberOf(saved.at("wall_seconds"));
+    optimizer::Result& result = run.result;
+    result.algorithm = run.algorithm;
+    result.best = saved.at("best").get<optimizer::Combination>();
+    result.bestScore.fitness = numberOf(saved.at("fitness"));
+    const nlohmann::json& components = saved.at("components");
+    if (components.size() > optimizer::Score::kMaxComponents) throw std::out_of_range("too many components");
+    for (std::size_t c = 0; c < components.size(); ++c) result.bestScore.components[c] = numberOf(components[c]);
+    result.bestScore.componentCount = int(components.size());
+    result.predictedMs = numberOf(saved.at("predicted_ms"));
+    result.evaluations = saved.at("evaluations").get<std::int64_t>();
+    result.cacheHits = saved.at("cache_hits").get<std::int64_t>();
+    result.iterations = saved.at("iterations").get<int>();
+    const std::string stop = saved.at("stop_reason").get<std::string>();
+    for (optimizer::StopReason reason : {optimizer::StopReason::Completed, optimizer::StopReason::MaxIterations,
+                                         optimizer::StopReason::Stable, optimizer::StopReason::MaxEvaluations,
+                                         optimizer::StopReason::WallTime}) {
+        if (optimizer::toString(reason) == stop) result.stopReason = reason;
+    }
+    for (const nlohmann::json& row : saved.at("log")) {
+        result.log.push_back({row.at(0).get<int>(), numberOf(row.at(1)), numberOf(row.at(2)), numberOf(row.at(3)),
+                              row.at(4).get<std::int64_t>(), row.at(5).get<std::int64_t>(), numberOf(row.at(6))});
+    }
+    return run;
+}
+
+std::string runKey(const std::string& algorithm, std::uint64_t seed) {
+    return algorithm + "#" + std::to_string(seed);
+}
+
+// Everything that changes a run's result, keyed by option name; --threads does not (results are identical for any
+// thread count), so a run may be resumed with another one. --algos and --seeds may change
+// too: runs are matched by algorithm and seed.
+nlohmann::json checkpointIdentity(const OptimizeOptions& options, std::int64_t evaluations) {
+    return {{"scene", options.scene},         {"seed", options.seed},       {"view", options.view},
+            {"budget-ms", options.budgetMs},  {"evals", evaluations},       {"size", options.size},
+            {"eval", options.evalPath},       {"weights", options.weights}, {"profile", options.profile},
+            {"model", options.model},         {"paper", options.paper},     {"seed-from", options.seedFrom},
+            {"particles", options.particles}, {"max-seconds", options.maxSeconds}};
+}
+
+constexpr const char* kCheckpointFormat = "lodopt-compare-checkpoint/1";
+
+// The saved runs of an earlier, interrupted compare with the same identity, by runKey.
+std::map<std::string, RunRecord> loadCheckpoint(const std::string& path, const nlohmann::json& identity) {
+    std::map<std::string, RunRecord> runs;
+    try {
+        std::ifstream in(path);
+        const nlohmann::json saved = nlohmann::json::parse(in);
+        if (saved.at("format") != kCheckpointFormat) throw std::invalid_argument("unknown format");
+        const nlohmann::json& was = saved.at("options");
+        for (auto it = identity.begin(); it != identity.end(); ++it) {
+            if (!was.contains(it.key()) || was[it.key()] != it.value()) {
+                throw UsageError(path + ": was written with --" + it.key() + " " +
+                                 (was.contains(it.key()) ? was[it.key()].dump() : std::string("(unset)")) +
+                                 ", this run has " + it.value().dump() +
+                                 "; resume with the same options, or delete the file to start over");
+            }
+        }
+        for (const nlohmann::json& item : saved.at("runs")) {
+            RunRecord run = runFromJson(item);
+            runs[runKey(run.algorithm, run.seed)] = std::move(run);
+        }
+    } catch (const UsageError&) {
+        throw;
+    } catch (const std::exception& error) {
+        throw UsageError(path + ": not a readable compare checkpoint (" + error.what() +
+                         "); delete it to start over");
+    }
+    return runs;
+}
+
+void saveCheckpoint(const std::string& path, const nlohmann::json& identity,
+                    const std::map<std::string, RunRecord>& runs) {
+    nlohmann::json saved = {{"format", kCheckpointFormat}, {"options", identity}, {"runs", nlohmann::json::array()}};
+    for (const auto& [key, run] : runs) saved["runs"].push_back(runToJson(run));
+    writeJsonFile(path, saved);
+}
+
 std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> items;
     std::stringstream stream(text);
@@ -55,6 +175,7 @@ void addCompareCommand(CLI::App& app) {
     auto seeds = std::make_shared<int>(10);
     auto evaluations = std::make_shared<std::int64_t>(300);
     auto outDir = std::make_shared<std::string>("out/compare");
+    auto resume = std::make_shared<bool>(false);
     auto output = std::make_shared<OutputOptions>();
     CLI::App* command = app.add_subcommand("compare", "Compare algorithms over seeds at equal evaluation budgets");
     addOptimizeOptions(*command, *options);
@@ -64,6 +185,8 @@ void addCompareCommand(CLI::App& app) {
         ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 30))
         ->capture_default_str();
     command->add_option("--out", *outDir, "Output folder")->capture_default_str();
+    command->add_flag("--resume", *resume,
+                      "Continue from the runs saved in OUT/compare.checkpoint.json by an interrupted compare");
     addOutputOptions(*command, *output);
     command->callback([=] {
         const std::vector<std::string> names = splitList(*algorithms);
@@ -76,19 +199,50 @@ void addCompareCommand(CLI::App& app) {
         // would otherwise circle through cached candidates forever.
         runOptions.maxIterations = int(std::max<std::int64_t>(*evaluations, 1000));
         runOptions.stableIterations = 0;
+
+        const std::filesystem::path dir(*outDir);
+        const std::string checkpoint = (dir / "compare.checkpoint.json").string();
+        const nlohmann::json identity = checkpointIdentity(runOptions, *evaluations);
+        std::map<std::string, RunRecord> saved;
+        if (std::filesystem::exists(checkpoint)) {
+            if (!*resume) {
+                throw UsageError(checkpoint + " holds the runs of an interrupted compare: add --resume to continue "
+                                              "it, or delete the file to start over");
+            }
+            saved = loadCheckpoint(checkpoint, identity);
+        } else if (*resume && !output->quiet && !output->json) {
+            std::cerr << "lodopt: compare: no checkpoint in " << dir.string() << ", starting from the first run\n";
+        }
+        const std::size_t total = names.size() * std::size_t(*seeds);
+        std::size_t done = 0;
+        for (const std::string& name : names) {
+            for (int seed = 1; seed <= *seeds; ++seed) done += saved.count(runKey(name, std::uint64_t(seed)));
+        }
+
+        InterruptGuard interruptGuard;
         PreparedScene prepared = prepareScene(runOptions);
         ViewContext context = prepareView(prepared, prepared.views[0], runOptions);
+        if (done < total) pollInterrupt("compare", done, total, "run", checkpoint);
 
         std::vector<RunRecord> runs;
-        Progress progress("compare", std::size_t(names.size()) * std::size_t(*seeds), output->quiet || output->json);
+        Progress progress("compare", total - done, output->quiet || output->json);
         for (const std::string& name : names) {
             for (int seed = 1; seed <= *seeds; ++seed) {
+                auto found = saved.find(runKey(name, std::uint64_t(seed)));
+                if (found != saved.end()) {
+                    runs.push_back(found->second);
+                    continue;
+                }
                 const auto start = std::chrono::steady_clock::now();
                 RunRecord record{name, std::uint64_t(seed), runAlgorithm(context, runOptions, name, std::uint64_t(seed)),
                                  0.0};
                 record.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                saved[runKey(name, std::uint64_t(seed))] = record;
                 runs.push_back(std::move(record));
+                saveCheckpoint(checkpoint, identity, saved);
                 progress.step(name + " seed " + std::to_string(seed));
+                // After the last run only the summary is left: finish it rather than stop.
+                if (++done < total) pollInterrupt("compare", done, total, "run", checkpoint);
             }
         }
         progress.finish();
@@ -135,7 +289,6 @@ void addCompareCommand(CLI::App& app) {
                 << ',' << (toReach.empty() ? std::string("") : std::to_string(median(toReach))) << ',' << reached << ','
                 << median(wall) << ',' << median(evals) << '\n';
         }
-        const std::filesystem::path dir(*outDir);
         nlohmann::json document = {{"scene", prepared.scene.name},
                                    {"view", context.setup->camera().name},
                                    {"budget_ms", runOptions.budgetMs},
@@ -147,6 +300,7 @@ void addCompareCommand(CLI::App& app) {
         writeJsonFile((dir / "compare.json").string(), document);
         scenes::writeTextAtomically((dir / "compare.csv").string(), csv.str());
         scenes::writeTextAtomically((dir / "curves.csv").string(), curves.str());
+        std::filesystem::remove(checkpoint);  // every run is now in the outputs
         if (output->json) {
             printJson(document);
             return;

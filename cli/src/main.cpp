@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "cli_common.hpp"
+#include "interrupt.hpp"
 #include "optimizer/problem.hpp"
 #include "scenes/scene.hpp"
 
@@ -17,11 +18,19 @@ int main(int argc, char** argv) {
     addEstimateCommand(app);
     addOptimizeCommand(app);
     addCompareCommand(app);
+    addTuneCommand(app);
+    addScheduleCommand(app);
+    addReportCommand(app);
+    addBenchCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {
         int code = app.exit(error);
         return code == 0 ? kExitOk : kExitBadInput;
+    } catch (const Interrupted& interrupted) {
+        // A long command stopped at a unit boundary; its message says how to resume.
+        std::cerr << "lodopt: " << interrupted.what() << "\n";
+        return kExitInterrupted;
     } catch (const UsageError& error) {
         std::cerr << "lodopt: error: " << error.what() << "\n";
         return kExitBadInput;

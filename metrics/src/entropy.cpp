@@ -46,7 +46,7 @@ double boundaryEntropy(const ImageView& image, const MetricParameters& parameter
     std::vector<std::uint16_t> bins(static_cast<std::size_t>(width));
     for (int y = 1; y + 1 < height; ++y) {
         detail::sobelBinsRow(gray.data() + std::size_t(y) * width + 1, stride, width - 2, binning, bins.data());
-        for (int x = 0; x < width - 2; ++x) lanes.add(x, bins[std::size_t(x)]);
+        lanes.addRow(bins.data(), width - 2, 1);
     }
     lanes.mergeInto(histogram.data());
     const std::uint64_t interior = std::uint64_t(width - 2) * std::uint64_t(height - 2);
@@ -78,9 +78,11 @@ double informationEntropy(const ImageView& image, const MetricParameters& parame
     std::array<std::uint64_t, 256> histogram{};
     detail::LaneHistogram lanes;
     lanes.resize(256);
+    std::vector<std::uint8_t> bins(static_cast<std::size_t>(image.width));
     for (int y = 0; y < image.height; ++y) {
         detail::grayRow(image.pixels + y * image.rowStride, image.channels, image.width, grayScale, gray.data());
-        for (int x = 0; x < image.width; ++x) lanes.add(x, detail::grayBin(gray[std::size_t(x)], grayScale));
+        detail::grayBinsRow(gray.data(), image.width, grayScale, bins.data());
+        lanes.addRow(bins.data(), image.width, 1);
     }
     lanes.mergeInto(histogram.data());
     return detail::histogramEntropy(histogram.data(), 256, pixels);

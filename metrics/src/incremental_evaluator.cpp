@@ -23,7 +23,7 @@ struct IncrementalEvaluator::State {
 
     std::vector<std::int32_t> candidateGray, referenceGray, rowGray;
     std::vector<std::uint16_t> rowBins;
-    std::vector<std::uint8_t> rowClasses;
+    std::vector<std::uint8_t> rowClasses, rowGrayBins;
 
     detail::SsimKernel kernel;
     std::vector<double> referenceMean, referenceVariance;
@@ -105,6 +105,7 @@ IncrementalEvaluator::IncrementalEvaluator(const ImageView& reference, const Met
         if (parameters.informationEntropyMode == EntropyMode::Histogram) {
             s.grayHistogram[0] = pixels;
             s.grayLanes.resize(256);
+            s.rowGrayBins.assign(std::size_t(s.width), 0);
         } else {
             s.intensityTerms.resize(s.width, s.height);
         }
@@ -178,9 +179,11 @@ void IncrementalEvaluator::State::updatePixels(const ImageView& candidate, int x
         std::int32_t* stored = candidateGray.data() + std::size_t(y) * width + x0;
         if (histogram) {
             if (!replace) {
-                for (int i = 0; i < count; ++i) grayLanes.remove(i, detail::grayBin(stored[i], gray));
+                detail::grayBinsRow(stored, count, gray, rowGrayBins.data());
+                grayLanes.addRow(rowGrayBins.data(), count, -1);
             }
-            for (int i = 0; i < count; ++i) grayLanes.add(i, detail::grayBin(rowGray[std::size_t(i)], gray));
+            detail::grayBinsRow(rowGray.data(), count, gray, rowGrayBins.data());
+            grayLanes.addRow(rowGrayBins.data(), count, 1);
         }
         if (intensity) {
             double* terms = intensityTerms.row(y) + x0;
@@ -235,10 +238,8 @@ void IncrementalEvaluator::State::updateBoundary(int x0, int y0, int x1, int y1,
             const std::size_t at = std::size_t(y) * width + bx0;
             detail::sobelBinsRow(candidateGray.data() + at, stride, count, sobel, rowBins.data());
             std::uint16_t* bins = sobelBins.data() + at;
-            if (!replace) {
-                for (int i = 0; i < count; ++i) boundaryLanes.remove(i, bins[i]);
-            }
-            for (int i = 0; i < count; ++i) boundaryLanes.add(i, rowBins[std::size_t(i)]);
+            if (!replace) boundaryLanes.addRow(bins, count, -1);
+            boundaryLanes.addRow(rowBins.data(), count, 1);
             std::copy_n(rowBins.data(), count, bins);
         }
         boundaryLanes.mergeInto(boundaryHistogram.data());

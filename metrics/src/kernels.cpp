@@ -43,7 +43,7 @@ void validatePair(const ImageView& candidate, const ImageView& reference) {
 
 GrayScale grayScale(GrayWeights weights) {
     auto make = [](std::int32_t r, std::int32_t g, std::int32_t b, std::int32_t scale) {
-        return GrayScale{r, g, b, scale, ((std::uint64_t(1) << 40) + std::uint64_t(scale) - 1) / std::uint64_t(scale)};
+        return GrayScale{r, g, b, scale, 1.0 / scale};
     };
     switch (weights) {
     case GrayWeights::Paper: return make(30, 59, 11, 100);
@@ -75,6 +75,12 @@ LODOPT_METRICS_CLONES void grayRow(const std::uint8_t* pixels, int channels, int
     } else {
         grayRowFixed<4>(pixels, count, r, g, b, out);
     }
+}
+
+LODOPT_METRICS_CLONES void grayBinsRow(const std::int32_t* scaledGray, int count, const GrayScale& gray,
+                                       std::uint8_t* out) {
+    const GrayScale local = gray;  // no aliasing with `out`
+    for (int i = 0; i < count; ++i) out[i] = std::uint8_t(grayBin(scaledGray[i], local));
 }
 
 void grayImage(const ImageView& image, const GrayScale& gray, std::vector<std::int32_t>& out) {

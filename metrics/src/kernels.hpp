@@ -41,9 +41,7 @@ void validatePair(const ImageView& candidate, const ImageView& reference);
 // gray * scale = r R + g G + b B (gray images: scale V).
 struct GrayScale {
     std::int32_t r = 30, g = 59, b = 11, scale = 100;
-    // ceil(2^40 / scale): (n * binMultiplier) >> 40 == n / scale for every n < 2^23, which
-    // covers every scaled gray value (< 2.6e6); a hardware division per pixel is slower.
-    std::uint64_t binMultiplier = ((std::uint64_t(1) << 40) + 99) / 100;
+    double inverseScale = 1.0 / 100;  // for grayBin
 };
 GrayScale grayScale(GrayWeights weights);
 // Scaled gray of `count` pixels starting at `pixels` (interleaved, `channels` bytes each).
@@ -51,10 +49,15 @@ void grayRow(const std::uint8_t* pixels, int channels, int count, const GrayScal
 // Whole image into `out` (width * height values, rows packed).
 void grayImage(const ImageView& image, const GrayScale& gray, std::vector<std::int32_t>& out);
 
-// Histogram bin 0..255 of a scaled gray value: the gray value rounded half up.
+// Histogram bin 0..255 of a scaled gray value: the gray value rounded half up, i.e.
+// floor((n + s/2) / s). Computed as floor((n + s/2 + 0.5) * fl(1/s)): the true quotient's
+// fraction lies in [0.5/s, 1 - 0.5/s], far wider than the ~1e-13 rounding error, so the
+// result is exact, and unlike an integer division it vectorises.
 inline int grayBin(std::int32_t scaledGray, const GrayScale& gray) {
-    return int((std::uint64_t(scaledGray + gray.scale / 2) * gray.binMultiplier) >> 40);
+    return int((double(scaledGray) + (double(gray.scale / 2) + 0.5)) * gray.inverseScale);
 }
+// grayBin of `count` values.
+void grayBinsRow(const std::int32_t* scaledGray, int count, const GrayScale& gray, std::uint8_t* out);
 
 // --- Pooling ------------------------------------------------------------------------------
 
@@ -155,8 +158,26 @@ void sobelBinsRow(const std::int32_t* center, std::ptrdiff_t stride, int count, 
 class LaneHistogram {
 public:
     void resize(int bins);
-    void add(int pixel, int bin) { ++mLanes[std::size_t((pixel & (mLaneCount - 1)) * mBins + bin)]; }
-    void remove(int pixel, int bin) { --mLanes[std::size_t((pixel & (mLaneCount - 1)) * mBins + bin)]; }
+    // Counts (+1 or -1 each) of `count` consecutive pixels' bins.
+    template <class Bin>
+    void addRow(const Bin* bins, int count, std::int64_t delta) {
+        std::int64_t* lane0 = mLanes.data();
+        if (mLaneCount == 1) {
+            for (int i = 0; i < count; ++i) lane0[bins[i]] += delta;
+            return;
+        }
+        std::int64_t* lane1 = lane0 + mBins;
+        std::int64_t* lane2 = lane1 + mBins;
+        std::int64_t* lane3 = lane2 + mBins;
+        int i = 0;
+        for (; i + 4 <= count; i += 4) {
+            lane0[bins[i]] += delta;
+            lane1[bins[i + 1]] += delta;
+            lane2[bins[i + 2]] += delta;
+            lane3[bins[i + 3]] += delta;
+        }
+        for (; i < count; ++i) lane0[bins[i]] += delta;
+    }
     // histogram[b] += sum of the lanes' changes to b; the lanes return to zero.
     void mergeInto(std::uint64_t* histogram);
 

@@ -1,6 +1,9 @@
 // Image files through OpenImageIO, written atomically.
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <memory>
+
 #include "renderer/renderer.hpp"
 #include "scenes/atomic_file.hpp"
 
@@ -36,29 +39,29 @@ LoadedImage readImage(const std::string& path) {
     auto input = OIIO::ImageInput::open(path);
     if (!input) throw RenderError(path + ": cannot read image (" + OIIO::geterror() + ")");
     const OIIO::ImageSpec& spec = input->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.width > 65536 || spec.height > 65536) {
+    // 16384 is the largest --size lodopt renders. A header may promise any size: the bound and
+    // the uninitialised buffer below keep a tiny hostile file from claiming gigabytes.
+    if (spec.width <= 0 || spec.height <= 0 || spec.width > 16384 || spec.height > 16384 || spec.nchannels <= 0) {
         throw RenderError(path + ": unsupported image size " + std::to_string(spec.width) + "x" +
-                          std::to_string(spec.height));
+                          std::to_string(spec.height) + " (1..16384 pixels each)");
     }
     LoadedImage image;
     image.width = spec.width;
     image.height = spec.height;
-    // Gray stays gray, gray+alpha becomes gray, RGB stays RGB, anything wider is RGBA.
-    const int stored = spec.nchannels;
+    // Gray stays gray, gray+alpha becomes gray, RGB stays RGB, anything wider is RGBA (only the
+    // first four channels are read).
+    const int stored = std::min(spec.nchannels, 4);
     image.channels = stored <= 2 ? 1 : stored == 3 ? 3 : 4;
-    std::vector<std::uint8_t> all(std::size_t(spec.width) * spec.height * stored);
-    if (!input->read_image(0, 0, 0, stored, OIIO::TypeDesc::UINT8, all.data())) {
+    const std::size_t count = std::size_t(spec.width) * spec.height;
+    // Not value-initialised: pages are touched only as the decoder fills them.
+    std::unique_ptr<std::uint8_t[]> all(new std::uint8_t[count * stored]);
+    if (!input->read_image(0, 0, 0, stored, OIIO::TypeDesc::UINT8, all.get())) {
         throw RenderError(path + ": " + input->geterror());
     }
     input->close();
-    if (image.channels == stored) {
-        image.pixels = std::move(all);
-    } else {
-        const std::size_t count = std::size_t(spec.width) * spec.height;
-        image.pixels.resize(count * image.channels);
-        for (std::size_t i = 0; i < count; ++i) {
-            for (int c = 0; c < image.channels; ++c) image.pixels[i * image.channels + c] = all[i * stored + c];
-        }
+    image.pixels.resize(count * image.channels);
+    for (std::size_t i = 0; i < count; ++i) {
+        for (int c = 0; c < image.channels; ++c) image.pixels[i * image.channels + c] = all[i * stored + c];
     }
     return image;
 }

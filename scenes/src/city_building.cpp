@@ -20,8 +20,8 @@ namespace {
 constexpr float kWallUvMetres = 3.0f;  // one plaster repeat (along u) per 3 m
 constexpr float kRoofUvMetres = 3.0f;
 constexpr glm::vec2 kWallTexel{0.02f, 0.02f};  // a plain-wall texel of the facade textures
-// Level 0's walls and windows share one texture, so one draw call (llvmpipe spends about
-// 20 us per draw, which over a thousand buildings outweighs their triangles): plaster in
+// Level 0's walls and windows share one texture, so one draw call (llvmpipe spends 10-20 us
+// of CPU per draw, which over a thousand buildings adds up to tens of ms): plaster in
 // v in [0, 0.5), the window bay in [0.5, 1). u repeats; each piece maps its height into its
 // half, with a margin so that linear filtering does not bleed from the other half.
 constexpr glm::vec2 kPlasterV{0.03f, 0.47f};

@@ -146,9 +146,20 @@ std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index, 
         for (std::size_t e = 0; e < accessor.count; ++e) indices[e] = componentAsIndex(base + e * stride, accessor.componentType);
     }
     if (accessor.sparse.isSparse) {
-        // Rare for indices, but legal: decode through the float path's sparse handling.
-        std::vector<float> values = readFloats(model, index, 1, file, what);
-        for (std::size_t e = 0; e < indices.size(); ++e) indices[e] = static_cast<std::uint32_t>(values[e]);
+        // Rare for indices, but legal. Substituted as integers: a float holds only 24 bits.
+        const auto& sparse = accessor.sparse;
+        const unsigned char* targets = viewBase(model, sparse.indices.bufferView, sparse.indices.byteOffset);
+        const unsigned char* replacements = viewBase(model, sparse.values.bufferView, sparse.values.byteOffset);
+        const std::uint64_t targetBytes = sizeOf(sparse.indices.componentType);
+        const std::uint64_t valueBytes = sizeOf(accessor.componentType);
+        for (int s = 0; s < sparse.count; ++s) {
+            const std::uint32_t target = componentAsIndex(targets + s * targetBytes, sparse.indices.componentType);
+            if (target >= accessor.count) {
+                fail(file, what + " (" + element("accessors", index) + ").sparse.indices",
+                     "index " + std::to_string(target) + " >= count " + std::to_string(accessor.count));
+            }
+            indices[target] = componentAsIndex(replacements + s * valueBytes, accessor.componentType);
+        }
     }
     return indices;
 }

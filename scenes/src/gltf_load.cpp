@@ -39,10 +39,15 @@ bool keepEncodedImage(tinygltf::Image* image, const int index, std::string*, std
     return true;
 }
 
-// Reads an external file (a .bin or image next to the .gltf) unless it is over the limit.
+// Reads an external file (a .bin or image next to the .gltf) unless it is over the limit or
+// not a regular file: a uri naming /dev/zero, a FIFO or a folder would read forever or block.
 bool readCappedFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     const std::uint64_t limit = *static_cast<const std::uint64_t*>(user);
     std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        if (err) *err += "file " + path + " is not a regular file\n";
+        return false;
+    }
     const std::uintmax_t size = fs::file_size(path, ec);
     if (!ec && size > limit) {
         if (err) *err += "file " + path + " is larger than the limit of " + std::to_string(limit) + " bytes\n";
@@ -83,6 +88,32 @@ void checkGlbContainer(const std::vector<unsigned char>& bytes, const std::strin
         at += 8 + std::size_t(chunkLength);
     }
     if (at == 12) fail(file, "GLB", "no JSON chunk");
+}
+
+// tinygltf converts extras and extensions to its Value type recursively, and nlohmann::json
+// dumps them recursively: a few hundred kilobytes of "[[[[..." would overflow the stack. No
+// glTF needs more than a few levels; refuse deeper JSON before any parser sees it.
+constexpr int kMaxJsonDepth = 256;
+
+void checkJsonDepth(const unsigned char* text, std::size_t length, const std::string& file) {
+    int depth = 0;
+    bool inString = false;
+    for (std::size_t i = 0; i < length; ++i) {
+        const unsigned char c = text[i];
+        if (inString) {
+            if (c == '\\') ++i;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > kMaxJsonDepth) {
+                fail(file, "JSON", "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels (at byte " +
+                                       std::to_string(i) + ")");
+            }
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
 }
 
 std::string joinLines(const std::string& text) {
@@ -151,7 +182,12 @@ std::vector<unsigned char> readFile(const std::string& path, std::uint64_t maxBy
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
     std::vector<unsigned char> bytes = readFile(path, options.maxBytes);
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-    if (binary) checkGlbContainer(bytes, path);
+    if (binary) {
+        checkGlbContainer(bytes, path);
+        if (bytes.size() >= 20) checkJsonDepth(bytes.data() + 20, std::min<std::size_t>(readU32(bytes, 12), bytes.size() - 20), path);
+    } else {
+        checkJsonDepth(bytes.data(), bytes.size(), path);
+    }
 
     tinygltf::TinyGLTF parser;
     DeferredImages deferred;

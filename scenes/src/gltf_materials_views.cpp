@@ -57,6 +57,37 @@ bool pngSize(const std::vector<unsigned char>& bytes, std::uint64_t& width, std:
     return true;
 }
 
+// Width and height from a JPEG's frame header (SOF0..SOF15 but DHT, JPG and DAC), walking
+// the marker segments before the first scan. False when there is none.
+bool jpegSize(const std::vector<unsigned char>& bytes, std::uint64_t& width, std::uint64_t& height) {
+    if (bytes.size() < 4 || bytes[0] != 0xFF || bytes[1] != 0xD8) return false;
+    std::size_t at = 2;
+    while (at + 4 <= bytes.size()) {
+        if (bytes[at] != 0xFF) return false;
+        const unsigned char marker = bytes[at + 1];
+        if (marker == 0xFF) {  // fill byte
+            ++at;
+            continue;
+        }
+        if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8)) {  // no length
+            at += 2;
+            continue;
+        }
+        if (marker == 0xDA || marker == 0xD9) return false;  // a scan or the end before any frame
+        const std::size_t length = (std::size_t(bytes[at + 2]) << 8) | bytes[at + 3];
+        const bool frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+        if (frame) {
+            if (at + 9 > bytes.size()) return false;
+            height = (std::uint64_t(bytes[at + 5]) << 8) | bytes[at + 6];
+            width = (std::uint64_t(bytes[at + 7]) << 8) | bytes[at + 8];
+            return true;
+        }
+        if (length < 2) return false;
+        at += 2 + length;
+    }
+    return false;
+}
+
 glm::vec3 jsonVec3(const nlohmann::json& value, const std::string& file, const std::string& where) {
     if (!value.is_array() || value.size() != 3) fail(file, where, "expected an array of 3 numbers");
     glm::vec3 v;
@@ -96,8 +127,15 @@ Texture SceneBuilder::decodeImage(int imageIndex) {
         fail(mFile, where, reason);
     }
     const std::vector<unsigned char>& bytes = mEncodedImages[imageIndex];
-    std::uint64_t width = 0, height = 0;
-    if (pngSize(bytes, width, height) && width * height * 4 > mOptions.maxBytes) {
+    // glTF 2.0 images are PNG or JPEG; stb_image would also decode BMP, PSD, TGA, ... whose
+    // headers are not checked here. The decoded size is checked before any decoder allocates.
+    std::uint64_t width = 0, height = 0, bytesPerPixel = 4;
+    if (pngSize(bytes, width, height)) {
+        if (bytes.size() > 24 && bytes[24] == 16) bytesPerPixel = 8;
+    } else if (!jpegSize(bytes, width, height)) {
+        fail(mFile, where, "cannot be decoded as PNG or JPEG (no PNG header or JPEG frame header)");
+    }
+    if (width * height * bytesPerPixel > mOptions.maxBytes) {
         fail(mFile, where, std::to_string(width) + "x" + std::to_string(height) + " pixels is over the byte limit");
     }
     tinygltf::Image decoded;

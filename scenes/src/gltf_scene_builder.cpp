@@ -7,7 +7,6 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <regex>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -34,6 +33,23 @@ void applyScreenCoverage(const tinygltf::Value& extras, std::vector<Level>& leve
     auto coverage = numberArray(extras.Get("MSFT_screencoverage"));
     if (!coverage) return;
     for (std::size_t k = 0; k < levels.size() && k < coverage->size(); ++k) levels[k].screenCoverage = (*coverage)[k];
+}
+
+// "<base>_LOD<k>" (k: 1-6 digits, "_LOD" in any case, base not empty): the base and k. The
+// same rule as std::regex "^(.+)_LOD([0-9]{1,6})$" (icase), which libstdc++ matches by
+// recursion, one frame per character: a long hostile name overflowed the stack.
+bool splitLodName(const std::string& name, std::string& base, int& k) {
+    std::size_t digits = 0;
+    while (digits < name.size() && std::isdigit(static_cast<unsigned char>(name[name.size() - 1 - digits]))) ++digits;
+    if (digits == 0 || digits > 6 || name.size() < digits + 5) return false;
+    const std::size_t suffix = name.size() - digits - 4;
+    static const char kLod[] = "_lod";
+    for (std::size_t i = 0; i < 4; ++i) {
+        if (std::tolower(static_cast<unsigned char>(name[suffix + i])) != kLod[i]) return false;
+    }
+    base = name.substr(0, suffix);
+    k = std::stoi(name.substr(name.size() - digits));
+    return true;
 }
 
 std::uint64_t triangleCount(const Level& level) {
@@ -96,7 +112,6 @@ Scene SceneBuilder::build() {
 }
 
 SceneBuilder::Classified SceneBuilder::classify(const std::vector<int>& siblings) const {
-    static const std::regex kLodName("^(.+)_LOD([0-9]{1,6})$", std::regex::icase);
     Classified result;
     result.roles.assign(siblings.size(), Role::kPlain);
     result.group.assign(siblings.size(), -1);
@@ -110,11 +125,11 @@ SceneBuilder::Classified SceneBuilder::classify(const std::vector<int>& siblings
             result.roles[i] = Role::kLodRoot;
         } else {
             result.roles[i] = node.mesh >= 0 ? Role::kMeshNode : Role::kPlain;
-            std::smatch match;
-            if (std::regex_match(node.name, match, kLodName)) {
-                std::string base = match[1];
+            std::string base;
+            int k = 0;
+            if (splitLodName(node.name, base, k)) {
                 std::transform(base.begin(), base.end(), base.begin(), [](unsigned char c) { return std::tolower(c); });
-                byBase[base].emplace_back(std::stoi(match[2]), i);
+                byBase[base].emplace_back(k, i);
             }
         }
     }
@@ -314,6 +329,20 @@ void SceneBuilder::finishObject(Object object) {
     if (triangles == 0) {
         warn("object '" + object.name + "' has no triangles; left out");
         return;
+    }
+    // Finite vertices under a finite transform can still overflow (1e30 x 1e30): world bounds,
+    // default views and the time model would all be infinite.
+    for (std::size_t l = 0; l < object.levels.size(); ++l) {
+        for (const Mesh& mesh : object.levels[l].meshes) {
+            for (const glm::vec3& p : mesh.positions) {
+                const glm::vec4 world = object.transform * glm::vec4(p, 1.0f);
+                if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z)) {
+                    fail(mFile, "object '" + object.name + "'",
+                         "level " + std::to_string(l) + " has a world-space position that is not finite (its transform "
+                         "overflows)");
+                }
+            }
+        }
     }
     if (mOptions.generateLods && object.levels.size() == 1) generateLodChain(object);
     mScene.objects.push_back(std::move(object));

@@ -298,8 +298,12 @@ void checkPrimitives(const tinygltf::Model& model, const std::string& file) {
     }
 }
 
+// The scene walks (gltf_scene_builder.cpp) recurse once per hierarchy level; real models nest
+// a few dozen levels, so this bound keeps a hostile file far from the stack's end.
+constexpr int kMaxNodeDepth = 1024;
+
 // Parents, then cycles: with at most one parent per node, a loop is a walk up the parents
-// that comes back to where it started.
+// that comes back to where it started. Then depths, bounded by kMaxNodeDepth.
 std::vector<int> checkNodeGraph(const tinygltf::Model& model, const std::string& file) {
     const int count = static_cast<int>(model.nodes.size());
     std::vector<int> parent(count, -1);
@@ -327,6 +331,23 @@ std::vector<int> checkNodeGraph(const tinygltf::Model& model, const std::string&
             fail(file, element("nodes", at), "node loop: node " + std::to_string(at) + " is its own ancestor");
         }
         for (int w : walk) state[w] = 2;
+    }
+    std::vector<int> depth(count, -1);  // roots 0; filled walking up to the nearest known depth
+    for (int n = 0; n < count; ++n) {
+        std::vector<int> walk;
+        int at = n;
+        while (at != -1 && depth[at] == -1) {
+            walk.push_back(at);
+            at = parent[at];
+        }
+        int d = at == -1 ? -1 : depth[at];
+        for (auto it = walk.rbegin(); it != walk.rend(); ++it) {
+            depth[*it] = ++d;
+            if (d > kMaxNodeDepth) {
+                fail(file, element("nodes", *it),
+                     "node hierarchy nested deeper than " + std::to_string(kMaxNodeDepth) + " levels");
+            }
+        }
     }
     for (int s = 0; s < static_cast<int>(model.scenes.size()); ++s) {
         const auto& roots = model.scenes[s].nodes;

@@ -177,7 +177,10 @@ void SceneIndex::measureCanonical() {
     const double fovY = 40.0;
     const double halfAngle = std::atan(std::min(1.0, aspect) * std::tan(glm::radians(fovY / 2.0)));
     constexpr float kFarFactor = 4.0f;
+    // One object at a time, with the scene's materials and textures (features may read them).
     scenes::Scene single;
+    single.materials = mScene.materials;
+    single.textures = mScene.textures;
     for (int o = 0; o < objectCount(); ++o) {
         single.objects.assign(1, mScene.objects[o]);
         const ObjectShape& shape = mShapes[o];

@@ -1,6 +1,8 @@
 // Frame features: projected box areas worked out by hand, and the table's O(1) deltas.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scenes/mesh_builder.hpp"
@@ -156,4 +158,73 @@ TEST(FeatureTable, FinerLevelsOfTheSameObjectNeverHaveFewerPixels) {
     const scenes::Scene scene = threeObjectScene();
     const timemodel::FeatureTable table(scene, scene.views[0], 128, 128);
     EXPECT_GT(table.contribution(0, 0)[Feature::kPixels], table.contribution(0, 2)[Feature::kPixels]);
+}
+
+TEST(RasterFeatures, OneTriangleByHand) {
+    // (0,0,-2), (1,0,-2), (0,1,-2) → NDC (0,0), (0.5,0), (0,0.5) → pixels (0,0), (50,0), (0,50)
+    // on a 200 x 200 viewport: area 1250, perimeter 100 + 50·√2.
+    scenes::Mesh mesh;
+    mesh.positions = {{0, 0, -2}, {1, 0, -2}, {0, 1, -2}};
+    mesh.normals.assign(3, glm::vec3(0, 0, 1));
+    mesh.indices = {0, 1, 2};
+    const timemodel::RasterFeatures f = timemodel::rasterFeatures({mesh}, viewProjection(straightCamera()), 200, 200);
+    EXPECT_EQ(f.visibleTriangles, 1.0);
+    EXPECT_NEAR(f.rasterPixels, 1250.0, 0.5);
+    EXPECT_NEAR(f.edgePixels, 100.0 + 50.0 * std::sqrt(2.0), 0.5);
+}
+
+TEST(RasterFeatures, TrianglesOutsideTheFrustumAreNotVisible) {
+    scenes::Mesh mesh;
+    mesh.positions = {{0, 0, 2}, {1, 0, 2}, {0, 1, 2},          // behind the camera
+                      {10, 0, -2}, {11, 0, -2}, {10, 1, -2},    // far right of the view
+                      {-1, -1, -3}, {1, -1, -3}, {0, 1, -3}};  // in front: counted
+    mesh.normals.assign(mesh.positions.size(), glm::vec3(0, 0, 1));
+    mesh.indices = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+    const timemodel::RasterFeatures f = timemodel::rasterFeatures({mesh}, viewProjection(straightCamera()), 64, 64);
+    EXPECT_EQ(f.visibleTriangles, 1.0);
+    EXPECT_GT(f.rasterPixels, 0.0);
+}
+
+namespace {
+
+// Two screen-filling quads on the view axis, one at z = -2 and one at z = -4, drawn in the
+// given order (object 0 first, as the renderer draws).
+scenes::Scene twoQuads(bool nearFirst) {
+    scenes::Scene scene;
+    scene.name = "quads";
+    for (float z : nearFirst ? std::vector<float>{-2.0f, -4.0f} : std::vector<float>{-4.0f, -2.0f}) {
+        scenes::MeshBuilder builder;
+        builder.addQuad({-10, -10, z}, {10, -10, z}, {10, 10, z}, {-10, 10, z});
+        scenes::Object object;
+        object.name = "quad";
+        scenes::Level level;
+        level.meshes.push_back(builder.finish());
+        object.levels.push_back(std::move(level));
+        scene.objects.push_back(std::move(object));
+    }
+    scene.views.push_back(straightCamera());
+    scenes::updateStatistics(scene);
+    return scene;
+}
+
+}  // namespace
+
+TEST(FeatureTable, ShadedPixelsFollowTheDepthTestInDrawOrder) {
+    const double screen = 100.0 * 100.0;
+    {
+        // Near quad first: the far one is rasterized in full but fails the depth test.
+        const scenes::Scene scene = twoQuads(true);
+        const timemodel::FeatureTable table(scene, scene.views[0], 100, 100);
+        EXPECT_NEAR(table.contribution(0, 0)[Feature::kRasterPixels], screen, 1.0);
+        EXPECT_NEAR(table.contribution(1, 0)[Feature::kRasterPixels], screen, 1.0);
+        EXPECT_NEAR(table.contribution(0, 0)[Feature::kShadedPixels], screen, 1.0);
+        EXPECT_LT(table.contribution(1, 0)[Feature::kShadedPixels], 0.01 * screen);
+    }
+    {
+        // Far quad first: both pass (the near one overwrites), so both are shaded.
+        const scenes::Scene scene = twoQuads(false);
+        const timemodel::FeatureTable table(scene, scene.views[0], 100, 100);
+        EXPECT_NEAR(table.contribution(0, 0)[Feature::kShadedPixels], screen, 1.0);
+        EXPECT_NEAR(table.contribution(1, 0)[Feature::kShadedPixels], screen, 1.0);
+    }
 }

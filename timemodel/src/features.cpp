@@ -1,6 +1,8 @@
-// Frame features (DONG15 eq. 5; CITY17 after Wimmer & Wonka 2003): per-level sums and the
-// projected bounding-box area that CITY17 uses for "#pixels".
+// Frame features (DONG15 eq. 5; CITY17 after Wimmer & Wonka 2003): per-level sums, the
+// projected bounding-box area that CITY17 uses for "#pixels", and the per-view table.
 #include "timemodel/features.hpp"
+
+#include "occlusion.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -21,9 +23,8 @@ const char* featureName(Feature feature) {
         case Feature::kBoundingBoxes: return "bounding_boxes";
         case Feature::kVisibleTriangles: return "visible_triangles";
         case Feature::kRasterPixels: return "raster_pixels";
-        case Feature::kRasterTiles: return "raster_tiles";
         case Feature::kEdgePixels: return "edge_pixels";
-        case Feature::kTexturedPixels: return "textured_pixels";
+        case Feature::kShadedPixels: return "shaded_pixels";
     }
     return "unknown";
 }
@@ -32,7 +33,7 @@ const std::array<Feature, kFeatureCount>& allFeatures() {
     static const std::array<Feature, kFeatureCount> features = {
         Feature::kVertices,      Feature::kTriangles,        Feature::kTextureBytes, Feature::kDrawCalls,
         Feature::kPixels,        Feature::kDrawnObjects,     Feature::kMatrices,     Feature::kBoundingBoxes,
-        Feature::kVisibleTriangles, Feature::kRasterPixels, Feature::kRasterTiles, Feature::kEdgePixels, Feature::kTexturedPixels};
+        Feature::kVisibleTriangles, Feature::kRasterPixels, Feature::kEdgePixels, Feature::kShadedPixels};
     return features;
 }
 
@@ -109,97 +110,8 @@ double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& mode
 
 namespace {
 
-// Outcode bits: outside the plane x < -w, x > w, y < -w, y > w, z < -w (near), z > w (far).
-std::uint8_t outcode(const glm::vec4& p) {
-    std::uint8_t code = 0;
-    if (p.x < -p.w) code |= 1;
-    if (p.x > p.w) code |= 2;
-    if (p.y < -p.w) code |= 4;
-    if (p.y > p.w) code |= 8;
-    if (p.z < -p.w) code |= 16;
-    if (p.z > p.w) code |= 32;
-    return code;
-}
-
-// Screen area in pixels of triangle (a, b, c) in clip space after clipping to the near plane,
-// at most the viewport part of its bounding rectangle.
-double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, double halfWidth,
-                            double halfHeight, double& tiles, double& edges) {
-    glm::vec4 polygon[4];
-    int count = 0;
-    const glm::vec4 in[3] = {a, b, c};
-    for (int i = 0; i < 3; ++i) {  // Sutherland–Hodgman against z >= -w
-        const glm::vec4& p = in[i];
-        const glm::vec4& q = in[(i + 1) % 3];
-        const float dp = p.z + p.w, dq = q.z + q.w;
-        if (dp >= 0.0f) polygon[count++] = p;
-        if ((dp >= 0.0f) != (dq >= 0.0f)) polygon[count++] = p + (q - p) * (dp / (dp - dq));
-    }
-    if (count < 3) return 0.0;
-    double xs[4], ys[4];
-    double minX = 1e30, maxX = -1e30, minY = 1e30, maxY = -1e30;
-    for (int i = 0; i < count; ++i) {
-        const double w = std::max(double(polygon[i].w), 1e-12);
-        xs[i] = double(polygon[i].x) / w * halfWidth;
-        ys[i] = double(polygon[i].y) / w * halfHeight;
-        minX = std::min(minX, xs[i]);
-        maxX = std::max(maxX, xs[i]);
-        minY = std::min(minY, ys[i]);
-        maxY = std::max(maxY, ys[i]);
-    }
-    double twiceArea = 0.0;
-    for (int i = 0; i < count; ++i) {
-        const int j = (i + 1) % count;
-        twiceArea += xs[i] * ys[j] - xs[j] * ys[i];
-    }
-    const double visibleWidth = std::min(maxX, halfWidth) - std::max(minX, -halfWidth);
-    const double visibleHeight = std::min(maxY, halfHeight) - std::max(minY, -halfHeight);
-    if (visibleWidth <= 0.0 || visibleHeight <= 0.0) return 0.0;
-    const double x0 = std::max(minX, -halfWidth) + halfWidth, x1 = std::min(maxX, halfWidth) + halfWidth;
-    const double y0 = std::max(minY, -halfHeight) + halfHeight, y1 = std::min(maxY, halfHeight) + halfHeight;
-    tiles += (std::floor(x1 / 64.0) - std::floor(x0 / 64.0) + 1.0) * (std::floor(y1 / 64.0) - std::floor(y0 / 64.0) + 1.0);
-    double perimeter = 0.0;
-    for (int i = 0; i < count; ++i) {
-        const int j = (i + 1) % count;
-        perimeter += std::hypot(xs[j] - xs[i], ys[j] - ys[i]);
-    }
-    edges += std::min(perimeter, 2.0 * (visibleWidth + visibleHeight));
-    return std::min(0.5 * std::abs(twiceArea), visibleWidth * visibleHeight);
-}
-
-}  // namespace
-
-RasterFeatures rasterFeatures(const scenes::Scene& scene, const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
-                              int height) {
-    assert(width > 0 && height > 0);
-    RasterFeatures result;
-    std::vector<glm::vec4> clip;
-    std::vector<std::uint8_t> codes;
-    for (const scenes::Mesh& mesh : meshes) {
-        const bool textured = mesh.material >= 0 && scene.materials[mesh.material].baseColorTexture >= 0;
-        const double pixelsBefore = result.rasterPixels;
-        clip.resize(mesh.positions.size());
-        codes.resize(mesh.positions.size());
-        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-            clip[v] = modelViewProjection * glm::vec4(mesh.positions[v], 1.0f);
-            codes[v] = outcode(clip[v]);
-        }
-        for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-            const std::uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
-            if (codes[a] & codes[b] & codes[c]) continue;  // trivially outside one plane
-            result.visibleTriangles += 1.0;
-            result.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height,
-                                                        result.rasterTiles, result.edgePixels);
-        }
-        if (textured) result.texturedPixels += result.rasterPixels - pixelsBefore;
-    }
-    return result;
-}
-
-namespace {
-
-FrameFeatures levelContribution(const scenes::Scene& scene, const scenes::Level& level, const glm::mat4& modelViewProjection, int width,
-                                int height) {
+FrameFeatures levelContribution(const scenes::Level& level,
+                                const glm::mat4& modelViewProjection, int width, int height, double depthPassShare) {
     const scenes::LevelStats& stats = level.stats;
     FrameFeatures f;
     f[Feature::kVertices] = double(stats.vertices);
@@ -209,12 +121,11 @@ FrameFeatures levelContribution(const scenes::Scene& scene, const scenes::Level&
     f[Feature::kPixels] = projectedPixels(stats.bounds, modelViewProjection, width, height);
     f[Feature::kDrawnObjects] = 1.0;
     f[Feature::kMatrices] = 1.0;
-    const RasterFeatures raster = rasterFeatures(scene, level.meshes, modelViewProjection, width, height);
+    const RasterFeatures raster = rasterFeatures(level.meshes, modelViewProjection, width, height);
     f[Feature::kVisibleTriangles] = raster.visibleTriangles;
     f[Feature::kRasterPixels] = raster.rasterPixels;
-    f[Feature::kRasterTiles] = raster.rasterTiles;
     f[Feature::kEdgePixels] = raster.edgePixels;
-    f[Feature::kTexturedPixels] = raster.texturedPixels;
+    f[Feature::kShadedPixels] = raster.rasterPixels * depthPassShare;
     return f;
 }
 
@@ -228,11 +139,14 @@ FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& cam
     assert(width > 0 && height > 0);
     const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
     mFirstLevel.reserve(scene.objects.size() + 1);
-    for (const scenes::Object& object : scene.objects) {
+    const std::vector<double> shares =
+        detail::depthPassShares(scene, viewProjection, float(width) / float(height));
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const scenes::Object& object = scene.objects[o];
         mFirstLevel.push_back(static_cast<int>(mContributions.size()));
         const glm::mat4 modelViewProjection = viewProjection * object.transform;
         for (const scenes::Level& level : object.levels) {
-            mContributions.push_back(levelContribution(scene, level, modelViewProjection, width, height));
+            mContributions.push_back(levelContribution(level, modelViewProjection, width, height, shares[o]));
         }
     }
     mFirstLevel.push_back(static_cast<int>(mContributions.size()));  // end sentinel
@@ -277,11 +191,14 @@ FrameFeatures computeFrameFeatures(const scenes::Scene& scene, const scenes::Com
     const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
     FrameFeatures out;
     out[Feature::kBoundingBoxes] = double(scene.objects.size());
+    const std::vector<double> shares =
+        detail::depthPassShares(scene, viewProjection, float(width) / float(height));
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const int level = combination[o];
         if (level == scenes::kNotDrawn) continue;
         const scenes::Object& object = scene.objects[o];
-        out += levelContribution(scene, object.levels[level], viewProjection * object.transform, width, height);
+        out += levelContribution(object.levels[level], viewProjection * object.transform, width, height,
+                                 shares[o]);
     }
     return out;
 }

@@ -261,10 +261,24 @@ ColumnCheck checkColumns(const Matrix& a, const std::vector<std::size_t>& order,
             if (interceptColumn >= 0 && check.kept[interceptColumn] && c != std::size_t(interceptColumn)) {
                 constant = distanceToSpan(unit[c], {unit[interceptColumn]}) < dependencyTolerance;
             }
-            check.notes.push_back(constant ? "dropped '" + names[c] + "': constant over the samples (absorbed by '" +
-                                                 names[interceptColumn] + "')"
-                                           : "dropped '" + names[c] + "': a linear combination of " +
-                                                 joinNames(before) + " over the samples");
+            // Name a single culprit when there is one: the usual case (matrices == drawn objects).
+            std::string partner;
+            for (std::size_t k : kept) {
+                if (int(k) == interceptColumn || !partner.empty()) continue;
+                std::vector<std::vector<double>> pair;
+                std::vector<double> rem;
+                if (interceptColumn >= 0 && check.kept[interceptColumn]) pair.push_back(unit[interceptColumn]);
+                const double d = distanceToSpan(unit[k], pair, &rem);
+                if (d <= 0.0) continue;
+                for (double& v : rem) v /= d;
+                pair.push_back(std::move(rem));
+                if (distanceToSpan(unit[c], pair) < dependencyTolerance) partner = names[k];
+            }
+            std::string note = "dropped '" + names[c] + "': ";
+            if (constant) note += "constant over the samples (absorbed by '" + names[interceptColumn] + "')";
+            else if (!partner.empty()) note += "a copy of '" + partner + "' (up to scale and offset) over the samples";
+            else note += "a linear combination of " + joinNames(before) + " over the samples";
+            check.notes.push_back(note);
             continue;
         }
         for (double& v : remainder) v /= distance;

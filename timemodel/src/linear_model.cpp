@@ -34,6 +34,8 @@ FitReport LinearModel::fitValidated(const std::vector<Sample>& samples) {
     auto column = [](Feature feature) { return static_cast<std::size_t>(feature) + 1; };
     const std::vector<std::size_t> order = {0,
                                             column(Feature::kVisibleTriangles),
+                                            column(Feature::kShadedPixels),
+                                            column(Feature::kEdgePixels),
                                             column(Feature::kRasterPixels),
                                             column(Feature::kTriangles),
                                             column(Feature::kPixels),

@@ -169,9 +169,18 @@ std::string profileToJson(const DeviceProfile& profile) {
         {"default_model", profile.defaultModel},
         {"models", models},
         {"feature_names", featureNames},
-        {"samples", samples},
+        {"samples", "@samples@"},
     };
-    return document.dump(2) + "\n";
+    // One line per sample keeps a profile of hundreds of samples readable and diffable.
+    std::string samplesText = "[";
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        samplesText += (i ? ",\n    " : "\n    ") + samples[i].dump();
+    }
+    samplesText += samples.empty() ? "]" : "\n  ]";
+    std::string text = document.dump(2);
+    const std::string placeholder = "\"@samples@\"";
+    text.replace(text.rfind(placeholder), placeholder.size(), samplesText);
+    return text + "\n";
 }
 
 DeviceProfile profileFromJson(const std::string& text, const std::string& source) {

@@ -9,14 +9,19 @@
 //   drawn objects, matrices — one model-view-projection (+ normal) matrix per drawn object;
 //   bounding boxes tested — every object of the scene, drawn or not: a culling pass tests
 //                      them all (our renderer does no culling, so this is constant per scene).
-// and two that the papers' engines got implicitly from view-frustum culling, which our renderer
-// leaves to the rasterizer (measured on llvmpipe: the same 270k-triangle forest frame costs 14 ms
-// of CPU from a view that sees a few trees and 73 ms from one that sees them all):
+// and four that the papers' engines got implicitly from view-frustum culling and hardware
+// rasterizers, and that llvmpipe's cost follows (measured here: the same 270k-triangle forest
+// frame costs 14 ms of CPU from a view that sees a few trees and 73 ms from one that sees them
+// all; a street view and an aerial view of the city with equal raster area differ by 30%):
 //   visible triangles — triangles not trivially outside the view frustum (not all three
 //                      vertices beyond the same clip plane): those the rasterizer sets up;
-//   raster pixels    — their screen area summed (near-clipped, each clamped to the viewport
-//                      part of its bounding rectangle): fragments rasterized, overdraw included.
-// These two walk the geometry once per (object, level) when a table is built.
+//   raster pixels    — their screen area summed (clipped to the near plane and the viewport):
+//                      fragments rasterized, overdraw included;
+//   edge pixels      — the length of their clipped edges inside the viewport: partial blocks;
+//   shaded pixels    — raster pixels times the share of the object's fragments that pass the
+//                      depth test in the reference frame drawn in object order (a 128-cell
+//                      software depth pass): early depth testing skips the hidden ones.
+// These walk the geometry once per (object, level) when a table is built.
 //
 // A FeatureTable precomputes each (object, level) contribution for one viewpoint and render
 // size, so the features of a combination cost O(objects) and a one-object change O(1).
@@ -45,11 +50,10 @@ enum class Feature : int {
     kBoundingBoxes,
     kVisibleTriangles,
     kRasterPixels,
-    kRasterTiles,
     kEdgePixels,
-    kTexturedPixels,
+    kShadedPixels,
 };
-inline constexpr std::size_t kFeatureCount = 13;
+inline constexpr std::size_t kFeatureCount = 12;
 
 // Stable snake_case name ("vertices", "texture_bytes", ...), used in profiles and tables.
 const char* featureName(Feature feature);
@@ -77,16 +81,14 @@ FrameFeatures operator-(FrameFeatures a, const FrameFeatures& b);
 double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& modelViewProjection, int width,
                        int height);
 
-// Visible triangles and raster pixels (see the file comment) of `meshes` seen through
-// `modelViewProjection` at `width` x `height` pixels; O(vertices + triangles).
+// Visible triangles, raster pixels and edge pixels (see the file comment) of `meshes` seen
+// through `modelViewProjection` at `width` x `height` pixels; O(vertices + triangles).
 struct RasterFeatures {
     double visibleTriangles = 0.0;
     double rasterPixels = 0.0;
-    double rasterTiles = 0.0;
     double edgePixels = 0.0;
-    double texturedPixels = 0.0;
 };
-RasterFeatures rasterFeatures(const scenes::Scene& scene, const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
+RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
                               int height);
 
 // Per-viewpoint table of feature contributions: build once per (scene, camera, size), then

@@ -1,0 +1,394 @@
+#include "bench_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <random>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "cli_common.hpp"
+#include "metrics/incremental_evaluator.hpp"
+#include "metrics/metrics.hpp"
+#include "timemodel/profile.hpp"
+
+namespace lodopt::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> values) {
+    if (values.empty()) return NAN;
+    std::sort(values.begin(), values.end());
+    const std::size_t mid = values.size() / 2;
+    return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+}
+
+// Median over 5 batches of the time per call of `call`, each batch about minSeconds / 5.
+template <typename Call>
+double microsecondsPerCall(Call call, double minSeconds, std::int64_t& calls) {
+    auto start = Clock::now();
+    call();
+    const double once = std::max(secondsSince(start), 1e-7);
+    const std::int64_t perBatch = std::max<std::int64_t>(1, std::int64_t(minSeconds / 5.0 / once));
+    std::vector<double> perCall;
+    calls = 1;
+    for (int batch = 0; batch < 5; ++batch) {
+        start = Clock::now();
+        for (std::int64_t i = 0; i < perBatch; ++i) call();
+        perCall.push_back(secondsSince(start) * 1e6 / double(perBatch));
+        calls += perBatch;
+    }
+    return median(perCall);
+}
+
+// Straightforward float64 implementations, written from the definitions in docs/metrics.md with
+// OpenCV primitives and nothing shared with the metrics module: what "the float64 reference"
+// means in the bench's deviation column.
+cv::Mat grayOf(const renderer::Frame& frame) {
+    cv::Mat rgba(frame.height, frame.width, CV_8UC4, const_cast<std::uint8_t*>(frame.rgba.data()));
+    cv::Mat wide, gray;
+    rgba.convertTo(wide, CV_64FC4);
+    cv::transform(wide, gray, cv::Matx14d(0.30, 0.59, 0.11, 0.0));  // GAPSO15 §2 weights
+    return gray;
+}
+
+// Wang et al. 2004 with an 11x11 Gaussian window (sigma 1.5), population moments, valid windows.
+double referenceSsim(const renderer::Frame& candidate, const renderer::Frame& reference) {
+    const cv::Mat x = grayOf(candidate), y = grayOf(reference);
+    const double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
+    const cv::Size window(11, 11);
+    cv::Mat mx, my, xx, yy, xy;
+    cv::GaussianBlur(x, mx, window, 1.5, 1.5, cv::BORDER_REFLECT);
+    cv::GaussianBlur(y, my, window, 1.5, 1.5, cv::BORDER_REFLECT);
+    cv::GaussianBlur(x.mul(x), xx, window, 1.5, 1.5, cv::BORDER_REFLECT);
+    cv::GaussianBlur(y.mul(y), yy, window, 1.5, 1.5, cv::BORDER_REFLECT);
+    cv::GaussianBlur(x.mul(y), xy, window, 1.5, 1.5, cv::BORDER_REFLECT);
+    const cv::Mat mxy = mx.mul(my), mx2 = mx.mul(mx), my2 = my.mul(my);
+    const cv::Mat numerator = (2 * mxy + c1).mul(2 * (xy - mxy) + c2);
+    const cv::Mat denominator = (mx2 + my2 + c1).mul((xx - mx2) + (yy - my2) + c2);
+    const cv::Mat map = numerator / denominator;
+    return cv::mean(map(cv::Rect(5, 5, x.cols - 10, x.rows - 10)))[0];
+}
+
+double entropyOf(const std::vector<double>& histogram) {
+    double total = 0.0, entropy = 0.0;
+    for (double count : histogram) total += count;
+    for (double count : histogram) {
+        if (count > 0) entropy -= count / total * std::log2(count / total);
+    }
+    return entropy;
+}
+
+// Sobel magnitude on interior pixels, 256 bins over [0, 255 sqrt(20)].
+double referenceBoundaryEntropy(const renderer::Frame& frame) {
+    const cv::Mat gray = grayOf(frame);
+    cv::Mat gx, gy;
+    cv::Sobel(gray, gx, CV_64F, 1, 0, 3);
+    cv::Sobel(gray, gy, CV_64F, 0, 1, 3);
+    std::vector<double> histogram(256, 0.0);
+    const double top = 255.0 * std::sqrt(20.0);
+    for (int row = 1; row + 1 < gray.rows; ++row) {
+        for (int col = 1; col + 1 < gray.cols; ++col) {
+            const double g = std::hypot(gx.at<double>(row, col), gy.at<double>(row, col));
+            histogram[std::min(255, int(g * 256.0 / top))] += 1.0;
+        }
+    }
+    return entropyOf(histogram);
+}
+
+// 256-bin histogram of the gray level rounded half up.
+double referenceInformationEntropy(const renderer::Frame& frame) {
+    const cv::Mat gray = grayOf(frame);
+    std::vector<double> histogram(256, 0.0);
+    for (int row = 0; row < gray.rows; ++row) {
+        for (int col = 0; col < gray.cols; ++col) {
+            histogram[std::clamp(int(std::floor(gray.at<double>(row, col) + 0.5)), 0, 255)] += 1.0;
+        }
+    }
+    return entropyOf(histogram);
+}
+
+optimizer::Combination randomCombination(const std::vector<int>& levelCounts, std::mt19937_64& rng) {
+    optimizer::Combination combination(levelCounts.size());
+    for (std::size_t i = 0; i < levelCounts.size(); ++i) {
+        combination[i] = int(std::uniform_int_distribution<int>(0, levelCounts[i] - 1)(rng));
+    }
+    return combination;
+}
+
+}  // namespace
+
+bool isStochastic(const std::string& algorithm) {
+    return algorithm == "gapso" || algorithm == "pso" || algorithm == "ga" || algorithm == "random";
+}
+
+std::vector<AlgorithmRun> runAlgorithmGrid(const ViewContext& context, const OptimizeOptions& options,
+                                           const std::vector<std::string>& algorithms,
+                                           const std::vector<std::int64_t>& budgets, int seeds,
+                                           const std::function<void(const std::string&)>& step) {
+    std::vector<AlgorithmRun> runs;
+    for (const std::string& algorithm : algorithms) {
+        for (std::int64_t budget : budgets) {
+            OptimizeOptions runOptions = options;
+            runOptions.maxEvaluations = budget;
+            // As in compare: the evaluation budget decides; the iteration cap only ends a
+            // converged swarm circling through cached candidates.
+            runOptions.maxIterations = int(std::max<std::int64_t>(budget, 1000));
+            runOptions.stableIterations = 0;
+            runOptions.maxSeconds = 0.0;
+            const int runsHere = isStochastic(algorithm) ? seeds : 1;
+            for (int seed = 1; seed <= runsHere; ++seed) {
+                const auto start = Clock::now();
+                const optimizer::Result result = runAlgorithm(context, runOptions, algorithm, std::uint64_t(seed));
+                AlgorithmRun run;
+                run.wallSeconds = secondsSince(start);
+                run.algorithm = algorithm;
+                run.evaluationBudget = budget;
+                run.seed = std::uint64_t(seed);
+                run.fitness = result.bestScore.fitness;
+                run.predictedMs = result.predictedMs;
+                run.evaluations = result.evaluations;
+                runs.push_back(run);
+                step(algorithm + " " + std::to_string(budget) + " evals seed " + std::to_string(seed));
+            }
+        }
+    }
+    return runs;
+}
+
+BestKnown findBestKnown(const ViewContext& context, const OptimizeOptions& options, double exhaustiveLimit,
+                        std::vector<AlgorithmRun>& runs) {
+    BestKnown best;
+    best.combinations = optimizer::combinationCount(context.problem.levelCounts);
+    if (best.combinations <= exhaustiveLimit) {
+        OptimizeOptions exhaustive = options;
+        exhaustive.maxEvaluations = 0;
+        exhaustive.maxSeconds = 0.0;
+        const auto start = Clock::now();
+        const optimizer::Result result = runAlgorithm(context, exhaustive, "exhaustive", 1);
+        best.seconds = secondsSince(start);
+        best.fitness = result.bestScore.fitness;
+        best.evaluations = result.evaluations;
+        best.source = "exhaustive";
+    } else {
+        best.source = "best found";
+    }
+    // The exhaustive optimum is the ceiling; "best found" is the best any run reached.
+    for (const AlgorithmRun& run : runs) best.fitness = std::max(best.fitness, run.fitness);
+    for (AlgorithmRun& run : runs) run.gap = std::max(0.0, best.fitness - run.fitness);
+    return best;
+}
+
+std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewContext& context,
+                                          const OptimizeOptions& options, int candidates, std::uint64_t seed) {
+    const std::vector<int>& levelCounts = context.problem.levelCounts;
+    std::mt19937_64 rng(seed);
+    std::vector<optimizer::Combination> random, walk;
+    for (int i = 0; i < candidates; ++i) random.push_back(randomCombination(levelCounts, rng));
+    // A walk changes one variable per step: what a swarm's small moves look like to the fast path.
+    walk.push_back(randomCombination(levelCounts, rng));
+    while (int(walk.size()) < candidates) {
+        optimizer::Combination next = walk.back();
+        if (!levelCounts.empty()) {
+            const std::size_t i = std::uniform_int_distribution<std::size_t>(0, levelCounts.size() - 1)(rng);
+            if (levelCounts[i] > 1) {
+                const int shift = std::uniform_int_distribution<int>(1, levelCounts[i] - 1)(rng);
+                next[i] = (next[i] + shift) % levelCounts[i];
+            }
+        }
+        walk.push_back(next);
+    }
+    const evaluation::ViewSetup& setup = *context.setup;
+    std::vector<EvalPathRow> rows;
+    for (const auto& [workload, set] : {std::pair<std::string, const std::vector<optimizer::Combination>*>{"random", &random},
+                                        {"walk", &walk}}) {
+        // Full path first: its fitness is what the fast path is compared with.
+        evaluation::FullRenderEvaluator full(setup, *prepared.renderer, prepared.metrics);
+        full.evaluate(set->front());  // warm-up: buffers sized, GL state touched
+        std::vector<double> fullFitness;
+        auto start = Clock::now();
+        for (const optimizer::Combination& c : *set) fullFitness.push_back(full.evaluate(c).fitness);
+        const double fullSeconds = secondsSince(start);
+        rows.push_back({"full", workload, "single", 1, candidates, fullSeconds, candidates / fullSeconds, NAN, NAN});
+
+        auto addFast = [&](const std::string& mode, int threads, const std::vector<optimizer::Score>& scores,
+                           double seconds) {
+            EvalPathRow row{"fast", workload, mode, threads, candidates, seconds, candidates / seconds, 0.0, 0.0};
+            for (std::size_t i = 0; i < scores.size(); ++i) {
+                const double diff = std::abs(scores[i].fitness - fullFitness[i]);
+                row.meanAbsFitnessDiff += diff / double(scores.size());
+                row.maxAbsFitnessDiff = std::max(row.maxAbsFitnessDiff, diff);
+            }
+            rows.push_back(row);
+        };
+        {
+            // Batches of 12, a swarm iteration's worth, spread over the threads.
+            evaluation::LayerEvaluator fast(setup, prepared.metrics, options.threads);
+            std::vector<optimizer::Score> scores(set->size());
+            fast.evaluate(set->front());
+            start = Clock::now();
+            for (std::size_t begin = 0; begin < set->size(); begin += 12) {
+                const std::size_t count = std::min<std::size_t>(12, set->size() - begin);
+                fast.evaluateBatch(std::span<const optimizer::Combination>(set->data() + begin, count),
+                                   std::span<optimizer::Score>(scores.data() + begin, count));
+            }
+            addFast("batch", options.threads, scores, secondsSince(start));
+        }
+        {
+            evaluation::LayerEvaluator fast(setup, prepared.metrics, 1);
+            std::vector<optimizer::Score> scores;
+            fast.evaluate(set->front());
+            start = Clock::now();
+            for (const optimizer::Combination& c : *set) scores.push_back(fast.evaluate(c));
+            addFast("single", 1, scores, secondsSince(start));
+        }
+    }
+    return rows;
+}
+
+std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContext& context, double minSeconds) {
+    const evaluation::ViewSetup& setup = *context.setup;
+    const renderer::Frame& reference = setup.reference();
+    // The candidate: every searched object at its coarsest option, a realistic worst case.
+    optimizer::Combination coarsest(context.problem.levelCounts.size());
+    for (std::size_t i = 0; i < coarsest.size(); ++i) coarsest[i] = context.problem.levelCounts[i] - 1;
+    const renderer::Frame candidate = prepared.renderer->render(setup.toScene(coarsest), setup.camera());
+    const int width = reference.width, height = reference.height;
+    const metrics::ImageView c = metrics::makeImageView(candidate.rgba.data(), width, height, 4);
+    const metrics::ImageView r = metrics::makeImageView(reference.rgba.data(), width, height, 4);
+    metrics::MetricParameters parameters = prepared.metrics;
+    // Fused deviations compare like with like: the reference fuses the three fidelities equally.
+    parameters.ssimWeight = parameters.boundaryEntropyWeight = parameters.informationEntropyWeight = 1.0;
+    cv::setNumThreads(1);  // lodopt's metrics are single-threaded; so is the reference
+
+    std::vector<MetricsRow> rows;
+    auto add = [&](const std::string& function, auto call, const std::string& referenceName, auto referenceCall,
+                   double value, double referenceValue) {
+        MetricsRow row;
+        row.function = function;
+        row.width = width;
+        row.height = height;
+        row.microsecondsPerCall = microsecondsPerCall(call, minSeconds, row.calls);
+        row.reference = referenceName;
+        if (!referenceName.empty()) {
+            std::int64_t referenceCalls = 0;
+            row.referenceMicrosecondsPerCall = microsecondsPerCall(referenceCall, minSeconds, referenceCalls);
+            row.absDeviation = std::abs(value - referenceValue);
+        }
+        rows.push_back(row);
+    };
+    auto none = [] {};
+    volatile double sink = 0.0;
+    const double ssimReference = referenceSsim(candidate, reference);
+    add("ssim", [&] { sink = metrics::ssim(c, r, parameters); }, "OpenCV float64 GaussianBlur SSIM",
+        [&] { sink = referenceSsim(candidate, reference); }, metrics::ssim(c, r, parameters), ssimReference);
+    const double boundaryReference = referenceBoundaryEntropy(candidate);
+    add("boundary_entropy", [&] { sink = metrics::boundaryEntropy(c, parameters); }, "OpenCV float64 Sobel histogram",
+        [&] { sink = referenceBoundaryEntropy(candidate); }, metrics::boundaryEntropy(c, parameters), boundaryReference);
+    const double informationReference = referenceInformationEntropy(candidate);
+    add("information_entropy", [&] { sink = metrics::informationEntropy(c, parameters); },
+        "float64 gray histogram", [&] { sink = referenceInformationEntropy(candidate); },
+        metrics::informationEntropy(c, parameters), informationReference);
+    add("precision_recall", [&] { sink = metrics::precisionRecall(c, r, parameters).precision; }, "", none, 0.0, 0.0);
+    // The fused fitness from the three references (GAPSO15: equal weights, entropy fidelity
+    // 1 - |e(c) - e(r)| / |e(r)|).
+    auto fidelity = [](double candidateValue, double referenceValue) {
+        return std::clamp(1.0 - std::abs(candidateValue - referenceValue) / std::max(std::abs(referenceValue), 1e-6), 0.0, 1.0);
+    };
+    const double fusedReference =
+        (std::clamp(ssimReference, 0.0, 1.0) +
+         fidelity(boundaryReference, referenceBoundaryEntropy(reference)) +
+         fidelity(informationReference, referenceInformationEntropy(reference))) / 3.0;
+    const double fused = metrics::evaluate(c, r, parameters).fitness;
+    add("evaluate (fused, from scratch)", [&] { sink = metrics::evaluate(c, r, parameters).fitness; },
+        "fused float64 references", [&] {
+            sink = (std::clamp(referenceSsim(candidate, reference), 0.0, 1.0) +
+                    fidelity(referenceBoundaryEntropy(candidate), referenceBoundaryEntropy(reference)) +
+                    fidelity(referenceInformationEntropy(candidate), referenceInformationEntropy(reference))) / 3.0;
+        },
+        fused, fusedReference);
+    metrics::IncrementalEvaluator incremental(r, parameters);
+    incremental.setCandidate(c);
+    add("incremental: whole candidate", [&] {
+        incremental.setCandidate(c);
+        sink = incremental.result().fitness;
+    }, "evaluate (fused, from scratch)", [&] { sink = metrics::evaluate(c, r, parameters).fitness; },
+        incremental.result().fitness, fused);
+    // One 64x64 rectangle toggled between the reference and the candidate.
+    const int x0 = std::max(0, width / 2 - 32), y0 = std::max(0, height / 2 - 32);
+    const int x1 = std::min(width, x0 + 64), y1 = std::min(height, y0 + 64);
+    renderer::Frame patched = reference;
+    for (int y = y0; y < y1; ++y) {
+        std::copy_n(&candidate.rgba[(std::size_t(y) * width + x0) * 4], (x1 - x0) * 4,
+                    &patched.rgba[(std::size_t(y) * width + x0) * 4]);
+    }
+    const metrics::ImageView p = metrics::makeImageView(patched.rgba.data(), width, height, 4);
+    incremental.setCandidate(r);
+    bool toggle = false;
+    add("incremental: 64x64 rectangle", [&] {
+        toggle = !toggle;
+        incremental.updateRect(toggle ? p : r, x0, y0, x1, y1);
+        sink = incremental.result().fitness;
+    }, "", none, 0.0, 0.0);
+    incremental.setCandidate(r);
+    incremental.updateRect(p, x0, y0, x1, y1);
+    rows.back().reference = "evaluate (fused, from scratch)";
+    rows.back().absDeviation = std::abs(incremental.result().fitness - metrics::evaluate(p, r, parameters).fitness);
+    (void)sink;
+    return rows;
+}
+
+std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewContext& context,
+                                            const OptimizeOptions& options, int frames, int repeats,
+                                            std::uint64_t seed, std::vector<std::string>& warnings) {
+    timemodel::DeviceProfile profile;
+    try {
+        profile = options.profile.empty() ? timemodel::shippedProfile(prepared.scene.name)
+                                          : timemodel::loadProfile(options.profile);
+    } catch (const timemodel::TimeModelError& error) {
+        throw UsageError(error.what());
+    }
+    warnings = timemodel::profileWarnings(profile, prepared.renderer->glRendererString(), prepared.settings.width,
+                                          prepared.settings.height, timemodel::describeMachine());
+    std::vector<TimeModelRow> rows;
+    for (const timemodel::ModelResult& model : profile.models) {
+        if (!model.fitted) continue;
+        const timemodel::ErrorStats& e = model.heldOutErrors;
+        rows.push_back({model.name, "calibration held-out", e.count, e.mean, e.median, e.p90, e.max});
+    }
+    // Frames of this view: every object at a uniformly drawn level, timed now.
+    std::mt19937_64 rng(seed);
+    const scenes::Scene& scene = prepared.scene;
+    const scenes::Camera& camera = context.setup->camera();
+    std::vector<scenes::Combination> combinations;
+    std::vector<double> measured;
+    for (int f = 0; f < frames; ++f) {
+        scenes::Combination combination(scene.objects.size());
+        for (std::size_t o = 0; o < combination.size(); ++o) {
+            combination[o] = std::uniform_int_distribution<int>(0, int(scene.objects[o].levels.size()) - 1)(rng);
+        }
+        measured.push_back(prepared.renderer->timeRender(combination, camera, repeats, 1));
+        combinations.push_back(std::move(combination));
+    }
+    for (const timemodel::ModelResult& result : profile.models) {
+        if (!result.fitted) continue;
+        const std::unique_ptr<timemodel::TimeModel> model = timemodel::modelFromProfile(profile, result.name);
+        std::vector<double> errors;
+        for (std::size_t f = 0; f < combinations.size(); ++f) {
+            const double estimate = model->estimateMs(context.cost->table().features(combinations[f]));
+            if (measured[f] > 0.0) errors.push_back(std::abs(measured[f] - estimate) / measured[f]);
+        }
+        const timemodel::ErrorStats e = timemodel::summarizeErrors(errors);
+        rows.push_back({result.name, "this view, timed now", e.count, e.mean, e.median, e.p90, e.max});
+    }
+    return rows;
+}
+
+}  // namespace lodopt::cli

@@ -1,0 +1,328 @@
+// lodopt bench: run time against error in one run (issue #8): algorithms × evaluation budgets
+// (wall time and gap to the best fitness known), fast vs full evaluation path, metrics against
+// float64 references, and the time models' error. The measurements are in bench_run.hpp; this
+// file parses options, writes the CSVs, bench.json and the Pareto plot, and prints a summary.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "bench_run.hpp"
+#include "cli_common.hpp"
+#include "progress.hpp"
+#include "report_bench.hpp"
+#include "scenes/atomic_file.hpp"
+#include "scenes/builtin.hpp"
+
+namespace lodopt::cli {
+namespace {
+
+struct BenchOptions {
+    OptimizeOptions optimize;
+    std::string algorithms = "gapso,pso,ga,random,greedy,mckp,screensize";
+    std::string budgets = "30,100,300,1000";
+    int seeds = 5;
+    int candidates = 96;
+    double metricsSeconds = 0.25;
+    int timingFrames = 12;
+    int timingRepeats = 5;
+    double exhaustiveLimit = 1e6;
+    bool quick = false;
+    std::string out = "out/bench";
+    OutputOptions output;
+};
+
+std::vector<std::string> splitNames(const std::string& text) {
+    std::vector<std::string> names;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        if (!item.empty()) names.push_back(item);
+    }
+    return names;
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t mid = values.size() / 2;
+    return values.empty() ? NAN : values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+}
+
+std::string number(double value) {
+    if (!std::isfinite(value)) return "";
+    std::ostringstream out;
+    out << std::setprecision(8) << value;
+    return out.str();
+}
+
+nlohmann::json jsonNumberOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
+// The budget between the all-coarsest and the all-finest prediction: the search has room in
+// both directions.
+double defaultBudget(const ViewContext& context) {
+    const std::vector<int>& counts = context.problem.levelCounts;
+    optimizer::Combination coarsest(counts.size()), finest(counts.size(), 0);
+    for (std::size_t i = 0; i < counts.size(); ++i) coarsest[i] = counts[i] - 1;
+    const double low = context.cost->predictMs(coarsest), high = context.cost->predictMs(finest);
+    return high > low ? low + 0.5 * (high - low) : std::max(low, 1e-3) * 1.01;
+}
+
+void runBench(const BenchOptions& bench) {
+    const auto start = std::chrono::steady_clock::now();
+    OptimizeOptions options = bench.optimize;
+    const std::vector<std::string> algorithms = splitNames(bench.algorithms);
+    if (algorithms.empty()) throw UsageError("--algos: empty list");
+    for (const std::string& name : algorithms) {
+        checkAlgorithmName(name);
+        if (name == "exhaustive") throw UsageError("--algos: exhaustive is the ground truth, not a contestant");
+    }
+    std::vector<std::int64_t> budgets;
+    for (int value : parseIntList(bench.budgets, "--evals")) {
+        if (value < 1) throw UsageError("--evals: " + std::to_string(value) + " must be >= 1");
+        budgets.push_back(value);
+    }
+    if (options.view == "all") throw UsageError("bench: --view must name one view");
+    const bool budgetGiven = options.budgetMs > 0.0;
+    if (!budgetGiven) options.budgetMs = std::numeric_limits<double>::max();  // set below from the view
+
+    PreparedScene prepared = prepareScene(options);
+    ViewContext context = prepareView(prepared, prepared.views[0], options);
+    if (!budgetGiven) {
+        options.budgetMs = defaultBudget(context);
+        context.problem.budgetMs = options.budgetMs;
+    }
+    std::size_t gridRuns = 0;
+    for (const std::string& name : algorithms) gridRuns += budgets.size() * std::size_t(isStochastic(name) ? bench.seeds : 1);
+    Progress progress("bench", gridRuns + 4, bench.output.quiet);
+
+    std::vector<AlgorithmRun> runs =
+        runAlgorithmGrid(context, options, algorithms, budgets, bench.seeds, [&](const std::string& label) { progress.step(label); });
+    const BestKnown best = findBestKnown(context, options, bench.exhaustiveLimit, runs);
+    progress.step("best known (" + best.source + ")");
+    const std::vector<EvalPathRow> paths = measureEvalPaths(prepared, context, options, bench.candidates, options.seed);
+    progress.step("evaluation paths");
+    const std::vector<MetricsRow> metricRows = measureMetrics(prepared, context, bench.metricsSeconds);
+    progress.step("metrics");
+    std::vector<std::string> warnings;
+    const std::vector<TimeModelRow> timeRows =
+        measureTimeModels(prepared, context, options, bench.timingFrames, bench.timingRepeats, options.seed, warnings);
+    progress.step("time models");
+    progress.finish();
+
+    // Per (algorithm, budget): medians over seeds.
+    std::ostringstream runsCsv, algorithmsCsv, pathsCsv, metricsCsv, timeCsv;
+    runsCsv << "algorithm,evaluation_budget,seed,wall_seconds,fitness,gap,evaluations,predicted_ms\n";
+    for (const AlgorithmRun& run : runs) {
+        runsCsv << run.algorithm << ',' << run.evaluationBudget << ',' << run.seed << ',' << number(run.wallSeconds) << ','
+                << number(run.fitness) << ',' << number(run.gap) << ',' << run.evaluations << ','
+                << number(run.predictedMs) << '\n';
+    }
+    algorithmsCsv << "algorithm,evaluation_budget,runs,median_wall_seconds,median_gap,min_gap,max_gap,median_fitness,"
+                     "median_evaluations\n";
+    nlohmann::json algorithmTable = nlohmann::json::array();
+    for (const std::string& name : algorithms) {
+        for (std::int64_t budget : budgets) {
+            std::vector<double> wall, gap, fitness, evaluations;
+            for (const AlgorithmRun& run : runs) {
+                if (run.algorithm != name || run.evaluationBudget != budget) continue;
+                wall.push_back(run.wallSeconds);
+                gap.push_back(run.gap);
+                fitness.push_back(run.fitness);
+                evaluations.push_back(double(run.evaluations));
+            }
+            const double minGap = *std::min_element(gap.begin(), gap.end());
+            const double maxGap = *std::max_element(gap.begin(), gap.end());
+            algorithmsCsv << name << ',' << budget << ',' << wall.size() << ',' << number(median(wall)) << ','
+                          << number(median(gap)) << ',' << number(minGap) << ',' << number(maxGap) << ','
+                          << number(median(fitness)) << ',' << number(median(evaluations)) << '\n';
+            algorithmTable.push_back({{"algorithm", name},
+                                      {"evaluation_budget", budget},
+                                      {"runs", wall.size()},
+                                      {"median_wall_seconds", median(wall)},
+                                      {"median_gap", median(gap)},
+                                      {"min_gap", minGap},
+                                      {"max_gap", maxGap},
+                                      {"median_fitness", median(fitness)},
+                                      {"median_evaluations", median(evaluations)}});
+        }
+    }
+    pathsCsv << "path,workload,mode,threads,candidates,seconds,evals_per_second,mean_abs_fitness_diff,"
+                "max_abs_fitness_diff\n";
+    nlohmann::json pathTable = nlohmann::json::array();
+    for (const EvalPathRow& row : paths) {
+        pathsCsv << row.path << ',' << row.workload << ',' << row.mode << ',' << row.threads << ',' << row.candidates
+                 << ',' << number(row.seconds) << ',' << number(row.evaluationsPerSecond) << ','
+                 << number(row.meanAbsFitnessDiff) << ',' << number(row.maxAbsFitnessDiff) << '\n';
+        pathTable.push_back({{"path", row.path},
+                             {"workload", row.workload},
+                             {"mode", row.mode},
+                             {"threads", row.threads},
+                             {"candidates", row.candidates},
+                             {"evals_per_second", row.evaluationsPerSecond},
+                             {"mean_abs_fitness_diff", jsonNumberOrNull(row.meanAbsFitnessDiff)},
+                             {"max_abs_fitness_diff", jsonNumberOrNull(row.maxAbsFitnessDiff)}});
+    }
+    metricsCsv << "function,width,height,calls,microseconds_per_call,reference,reference_microseconds_per_call,"
+                  "abs_deviation\n";
+    nlohmann::json metricTable = nlohmann::json::array();
+    for (const MetricsRow& row : metricRows) {
+        metricsCsv << '"' << row.function << "\"," << row.width << ',' << row.height << ',' << row.calls << ','
+                   << number(row.microsecondsPerCall) << ",\"" << row.reference << "\","
+                   << number(row.referenceMicrosecondsPerCall) << ',' << number(row.absDeviation) << '\n';
+        metricTable.push_back({{"function", row.function},
+                               {"microseconds_per_call", row.microsecondsPerCall},
+                               {"reference", row.reference},
+                               {"reference_microseconds_per_call", jsonNumberOrNull(row.referenceMicrosecondsPerCall)},
+                               {"abs_deviation", jsonNumberOrNull(row.absDeviation)}});
+    }
+    timeCsv << "model,source,samples,mean_error,median_error,p90_error,max_error\n";
+    nlohmann::json timeTable = nlohmann::json::array();
+    for (const TimeModelRow& row : timeRows) {
+        timeCsv << row.model << ",\"" << row.source << "\"," << row.samples << ',' << number(row.mean) << ','
+                << number(row.median) << ',' << number(row.p90) << ',' << number(row.max) << '\n';
+        timeTable.push_back({{"model", row.model},
+                             {"source", row.source},
+                             {"samples", row.samples},
+                             {"mean_error", jsonNumberOrNull(row.mean)},
+                             {"median_error", jsonNumberOrNull(row.median)},
+                             {"p90_error", jsonNumberOrNull(row.p90)},
+                             {"max_error", jsonNumberOrNull(row.max)}});
+    }
+
+    const std::filesystem::path dir(bench.out);
+    scenes::writeTextAtomically((dir / kBenchRunsCsv).string(), runsCsv.str());
+    scenes::writeTextAtomically((dir / kBenchAlgorithmsCsv).string(), algorithmsCsv.str());
+    scenes::writeTextAtomically((dir / kBenchEvalPathsCsv).string(), pathsCsv.str());
+    scenes::writeTextAtomically((dir / kBenchMetricsCsv).string(), metricsCsv.str());
+    scenes::writeTextAtomically((dir / kBenchTimeModelCsv).string(), timeCsv.str());
+    const Plotter plotter(dir.string());
+    const PlotOutput pareto = plotter.plot(paretoPlot(readCsv((dir / kBenchAlgorithmsCsv).string()), "bench_pareto"));
+    if (!pareto.made) std::cerr << "lodopt: bench: " << pareto.note << "\n";
+
+    nlohmann::json document = {
+        {"format", "lodopt-bench/1"},
+        {"scene", prepared.scene.name},
+        {"view", context.setup->camera().name},
+        {"size", options.size},
+        {"budget_ms", options.budgetMs},
+        {"budget_source", budgetGiven ? "--budget-ms" : "midway between the all-coarsest and all-finest prediction"},
+        {"time_model", prepared.timeModelName},
+        {"threads", options.threads},
+        {"seeds", bench.seeds},
+        {"evaluation_budgets", budgets},
+        {"algorithms", algorithms},
+        {"searched_objects", context.setup->skipSummary().searchedObjects},
+        {"best_known",
+         {{"fitness", best.fitness},
+          {"source", best.source},
+          {"combinations", best.combinations},
+          {"exhaustive_evaluations", best.evaluations},
+          {"exhaustive_seconds", best.seconds}}},
+        {"algorithm_budget", algorithmTable},
+        {"eval_paths", pathTable},
+        {"metrics", metricTable},
+        {"time_model_errors", timeTable},
+        {"time_model_warnings", warnings},
+        {"pareto_plot", pareto.made ? nlohmann::json("bench_pareto.png") : nlohmann::json()},
+        {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
+    };
+    writeJsonFile((dir / kBenchJson).string(), document);
+    if (bench.output.json) {
+        document["out"] = bench.out;
+        printJson(document);
+        return;
+    }
+    std::cout << prepared.scene.name << " / " << context.setup->camera().name << ", " << options.size << ", budget "
+              << std::setprecision(4) << options.budgetMs << " ms, " << best.combinations << " combinations, best known "
+              << std::setprecision(6) << best.fitness << " (" << best.source << ")\n";
+    std::cout << "median over seeds at " << budgets.back() << " evaluations:\n";
+    for (const nlohmann::json& row : algorithmTable) {
+        if (row["evaluation_budget"] != budgets.back()) continue;
+        std::cout << "  " << std::left << std::setw(11) << row["algorithm"].get<std::string>() << std::right
+                  << " gap " << std::setw(10) << std::setprecision(3) << row["median_gap"].get<double>() << "  wall "
+                  << std::setw(8) << row["median_wall_seconds"].get<double>() << " s\n";
+    }
+    for (const EvalPathRow& row : paths) {
+        if (row.workload != "random") continue;
+        std::cout << "  " << row.path << " path (" << row.mode << ", " << row.threads << " thread"
+                  << (row.threads > 1 ? "s" : "") << "): " << std::setprecision(4) << row.evaluationsPerSecond
+                  << " evaluations/s";
+        if (std::isfinite(row.maxAbsFitnessDiff)) std::cout << ", max |fast - full| " << std::setprecision(3) << row.maxAbsFitnessDiff;
+        std::cout << "\n";
+    }
+    for (const MetricsRow& row : metricRows) {
+        std::cout << "  " << std::left << std::setw(30) << row.function << std::right << std::setw(10)
+                  << std::setprecision(4) << row.microsecondsPerCall << " us/call";
+        if (std::isfinite(row.absDeviation)) std::cout << ", |deviation| " << std::setprecision(3) << row.absDeviation;
+        std::cout << "\n";
+    }
+    for (const TimeModelRow& row : timeRows) {
+        std::cout << "  time model " << std::left << std::setw(7) << row.model << std::right << " " << row.source
+                  << ": mean error " << std::setprecision(3) << 100.0 * row.mean << "% (" << row.samples << " frames)\n";
+    }
+    for (const std::string& warning : warnings) std::cout << "  note: the profile " << warning << "\n";
+    std::cout << "wrote " << (dir / kBenchJson).string() << ", " << kBenchAlgorithmsCsv << ", " << kBenchRunsCsv << ", "
+              << kBenchEvalPathsCsv << ", " << kBenchMetricsCsv << ", " << kBenchTimeModelCsv
+              << (pareto.made ? ", bench_pareto.png" : "") << "\n";
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+    auto bench = std::make_shared<BenchOptions>();
+    bench->optimize.view = "0";
+    CLI::App* command = app.add_subcommand("bench", "Run time against error: algorithms, evaluation paths, metrics, time models");
+    OptimizeOptions& o = bench->optimize;
+    command->add_option("--scene", o.scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
+    command->add_option("--view", o.view, "View name or index")->capture_default_str();
+    command->add_option("--budget-ms", o.budgetMs, "Predicted render-time budget (default: midway between the "
+                                                   "all-coarsest and the all-finest prediction)")
+        ->check(CLI::PositiveNumber);
+    command->add_option("--size", o.size, "Render size WIDTHxHEIGHT")->capture_default_str();
+    command->add_option("--threads", o.threads, "Evaluation threads (default: all cores)")->check(CLI::Range(1, 256));
+    command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();
+    command->add_option("--profile", o.profile, "Device profile from 'lodopt calibrate' (default: shipped)");
+    command->add_option("--model", o.model, "Time model in the profile (default: the profile's default)");
+    command->add_option("--seed", o.seed, "Scene seed and seed of the sampled candidates")->capture_default_str();
+    command->add_option("--algos", bench->algorithms, "Comma-separated algorithms")->capture_default_str();
+    command->add_option("--evals", bench->budgets, "Comma-separated evaluation budgets")->capture_default_str();
+    command->add_option("--seeds", bench->seeds, "Seeds 1..N per stochastic algorithm and budget")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    command->add_option("--candidates", bench->candidates, "Candidates per workload for fast vs full path")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    command->add_option("--metrics-seconds", bench->metricsSeconds, "Time spent timing each metrics function")
+        ->check(CLI::Range(0.001, 60.0))
+        ->capture_default_str();
+    command->add_option("--timing-frames", bench->timingFrames, "Frames rendered and timed for the time-model check")
+        ->check(CLI::Range(1, 10000))
+        ->capture_default_str();
+    command->add_option("--exhaustive-limit", bench->exhaustiveLimit,
+                        "Largest space searched exhaustively for the best known fitness")
+        ->check(CLI::Range(1.0, 1e6))
+        ->capture_default_str();
+    command->add_flag("--quick", bench->quick,
+                      "A smoke run: 2 seeds, budgets 30,100, 12 candidates, 8 timed frames, short metric timing "
+                      "(explicit options still win)");
+    command->add_option("--out", bench->out, "Output folder")->capture_default_str();
+    addOutputOptions(*command, bench->output);
+    command->callback([bench, command] {
+        BenchOptions options = *bench;
+        if (options.quick) {
+            // Only what the user did not set explicitly.
+            if (command->count("--seeds") == 0) options.seeds = 2;
+            if (command->count("--evals") == 0) options.budgets = "30,100";
+            if (command->count("--candidates") == 0) options.candidates = 12;
+            if (command->count("--metrics-seconds") == 0) options.metricsSeconds = 0.02;
+            if (command->count("--timing-frames") == 0) options.timingFrames = 8;
+            options.timingRepeats = 3;
+        }
+        runBench(options);
+    });
+}
+
+}  // namespace lodopt::cli

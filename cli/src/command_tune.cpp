@@ -1,0 +1,402 @@
+// lodopt tune: fits the scheduler's importance coefficients and distance thresholds so that its
+// per-frame choices score close to the optimizer's on sampled viewpoints (or camera-path frames).
+//
+// Per view: the optimizer's answer (any algorithm, default gapso) under the budget, scored with
+// the view's fast evaluator; the scheduler's choice on the same view is scored with the same
+// evaluator (its scene levels mapped by ViewSetup::fromScene), so "the scheduler's fitness as a
+// fraction of the optimizer's" compares like with like. Each finished view is checkpointed to
+// <out stem>_views/view_NNN.json; --resume skips views whose checkpoint has the same settings.
+// Views are split into tuning and held-out ones; the compass search (scheduler/tuning.hpp)
+// maximises the mean fraction on the tuning views, and both the tuned coefficients and the
+// published defaults are reported on the held-out views.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "cli_common.hpp"
+#include "evaluation/evaluation.hpp"
+#include "evaluation/time_cost.hpp"
+#include "optimize_run.hpp"
+#include "progress.hpp"
+#include "schedule_common.hpp"
+#include "scheduler/coefficients.hpp"
+#include "scheduler/tuning.hpp"
+#include "time_profile.hpp"
+#include "timemodel/calibration.hpp"
+
+namespace lodopt::cli {
+namespace {
+
+struct TuneOptions {
+    OptimizeOptions optimize;
+    int views = 8;
+    std::string path;
+    int holdout = 0;  // 0 = automatic
+    std::string out = "coeffs.json";
+    std::string form = "auto";
+    int searchEvaluations = 150;
+    std::string features = "bounds";
+    std::string organisation = "flat";
+    bool resume = false;
+};
+
+// One tuning or held-out view: its prepared evaluation and the optimizer's answer.
+struct TuneView {
+    scenes::Camera camera;
+    bool heldOut = false;
+    bool resumed = false;
+    std::unique_ptr<evaluation::ViewSetup> setup;
+    std::unique_ptr<optimizer::Evaluator> evaluator;
+    std::unique_ptr<evaluation::TimeModelCost> cost;
+    scenes::Combination optimizerLevels;
+    double optimizerFitness = 0.0;
+    double optimizerSeconds = 0.0;
+    std::map<optimizer::Combination, double> cache;  // fitness of combinations already scored
+};
+
+nlohmann::json settingsSignature(const TuneOptions& o) {
+    const OptimizeOptions& p = o.optimize;
+    return {{"scene", p.scene},   {"seed", p.seed},         {"size", p.size},       {"budget_ms", p.budgetMs},
+            {"algorithm", p.algorithm}, {"evals", p.maxEvaluations}, {"max_iterations", p.maxIterations},
+            {"weights", p.weights}, {"profile", p.profile}, {"model", p.model},     {"path", o.path},
+            {"views", o.views}};
+}
+
+std::filesystem::path checkpointDir(const std::string& out) {
+    const std::filesystem::path file(out);
+    return file.parent_path() / (file.stem().string() + "_views");
+}
+
+std::vector<scenes::Camera> sampleCameras(const scenes::Scene& scene, const TuneOptions& options) {
+    std::vector<scenes::Camera> cameras;
+    const int n = options.views;
+    if (!options.path.empty()) {
+        const scenes::CameraPath path = loadCameraPath(scene, options.path);
+        const int frames = int(path.frames.size());
+        for (int k = 0; k < n; ++k) {
+            const int f = n == 1 ? 0 : int(std::lround(double(k) * double(frames - 1) / double(n - 1)));
+            cameras.push_back(path.frames[std::size_t(f)]);
+        }
+        return cameras;
+    }
+    if (scene.views.empty()) throw UsageError("scene '" + scene.name + "' has no views to sample around");
+    timemodel::SplitMix64 rng(options.optimize.seed);
+    for (int k = 0; k < n; ++k) {
+        const scenes::Camera& around = scene.views[std::size_t(k) % scene.views.size()];
+        scenes::Camera camera = timemodel::jitterCamera(around, rng);
+        camera.name = "tune_" + std::to_string(k) + "_" + around.name;
+        cameras.push_back(camera);
+    }
+    return cameras;
+}
+
+// Fitness of the scheduler's choice on `view` with `coefficients`, as a share of the optimizer's.
+double schedulerFraction(TuneView& view, scheduler::FrameScheduler& frameScheduler,
+                         const scheduler::SchedulerCoefficients& coefficients, double* fitnessOut = nullptr,
+                         double* predictedOut = nullptr) {
+    frameScheduler.setCoefficients(coefficients);
+    frameScheduler.reset();
+    const scheduler::FrameDecision& decision = frameScheduler.decide(view.camera, 0.0);
+    const optimizer::Combination combination = view.setup->fromScene(decision.levels);
+    auto it = view.cache.find(combination);
+    if (it == view.cache.end()) it = view.cache.emplace(combination, view.evaluator->evaluate(combination).fitness).first;
+    if (fitnessOut) *fitnessOut = it->second;
+    // The exact features of the view (the optimizer's cost) for the scheduler's levels.
+    if (predictedOut) *predictedOut = view.cost->predictSceneMs(decision.levels);
+    return view.optimizerFitness > 0.0 ? it->second / view.optimizerFitness : 0.0;
+}
+
+double meanFraction(std::vector<TuneView>& views, bool heldOut, scheduler::FrameScheduler& frameScheduler,
+                    const scheduler::SchedulerCoefficients& coefficients) {
+    double sum = 0.0;
+    int count = 0;
+    for (TuneView& view : views) {
+        if (view.heldOut != heldOut) continue;
+        sum += schedulerFraction(view, frameScheduler, coefficients);
+        ++count;
+    }
+    return count > 0 ? sum / count : 0.0;
+}
+
+nlohmann::json coefficientsJson(const scheduler::SchedulerCoefficients& c) {
+    return nlohmann::json::parse(scheduler::coefficientsToJson(c));
+}
+
+void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vector<TuneView>& views,
+                  const OutputOptions& output) {
+    const std::filesystem::path dir = checkpointDir(options.out);
+    const nlohmann::json signature = settingsSignature(options);
+    Progress progress("tune: optimizer per view", views.size(), output.quiet);
+    for (std::size_t k = 0; k < views.size(); ++k) {
+        TuneView& view = views[k];
+        std::ostringstream name;
+        name << "view_" << std::setw(3) << std::setfill('0') << k << ".json";
+        const std::filesystem::path checkpoint = dir / name.str();
+        prepared.scene.views.push_back(view.camera);
+        const int viewIndex = int(prepared.scene.views.size()) - 1;
+        if (options.resume && std::filesystem::exists(checkpoint)) {
+            std::ifstream file(checkpoint);
+            std::ostringstream text;
+            text << file.rdbuf();
+            const nlohmann::json saved = nlohmann::json::parse(text.str(), nullptr, false);
+            if (saved.is_discarded() || !saved.contains("settings") || !saved.contains("camera") ||
+                !saved.contains("combination")) {
+                throw UsageError(checkpoint.string() + ": not a tune checkpoint (delete it or drop --resume)");
+            }
+            if (saved["settings"] != signature || saved["camera"] != cameraToJson(view.camera)) {
+                throw UsageError(checkpoint.string() +
+                                 ": made with other settings or another viewpoint; delete the folder or drop --resume");
+            }
+            view.optimizerLevels = saved["combination"].get<scenes::Combination>();
+            view.optimizerSeconds = saved.value("seconds", 0.0);
+            view.resumed = true;
+            scenes::validateCombination(prepared.scene, view.optimizerLevels);
+            view.setup = std::make_unique<evaluation::ViewSetup>(prepared.scene, view.camera, *prepared.renderer);
+            view.evaluator =
+                std::make_unique<evaluation::LayerEvaluator>(*view.setup, prepared.metrics, options.optimize.threads);
+        } else {
+            const auto start = std::chrono::steady_clock::now();
+            ViewContext context = prepareView(prepared, viewIndex, options.optimize);
+            const optimizer::Result result =
+                runAlgorithm(context, options.optimize, options.optimize.algorithm, options.optimize.seed);
+            view.optimizerSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            view.optimizerLevels = context.setup->toScene(result.best);
+            view.setup = std::move(context.setup);
+            view.evaluator = std::move(context.evaluator);
+            nlohmann::json saved = {{"format", "lodopt-tune-view"},
+                                    {"version", 1},
+                                    {"settings", signature},
+                                    {"index", k},
+                                    {"held_out", view.heldOut},
+                                    {"camera", cameraToJson(view.camera)},
+                                    {"combination", view.optimizerLevels},
+                                    {"search_fitness", result.bestScore.fitness},
+                                    {"predicted_ms", result.predictedMs},
+                                    {"evaluations", result.evaluations},
+                                    {"seconds", view.optimizerSeconds}};
+            writeJsonFile(checkpoint.string(), saved);
+        }
+        view.cost = std::make_unique<evaluation::TimeModelCost>(*view.setup, prepared.estimator);
+        // Scored here with the same evaluator as every scheduler choice, resumed or not.
+        view.optimizerFitness = view.evaluator->evaluate(view.setup->fromScene(view.optimizerLevels)).fitness;
+        progress.step(view.camera.name + (view.resumed ? " (resumed)" : ""));
+    }
+    progress.finish();
+}
+
+void runTune(TuneOptions options, const OutputOptions& output) {
+    checkAlgorithmName(options.optimize.algorithm);
+    if (options.views < 2) throw UsageError("--views: at least 2 (tuning and held-out views)");
+    const int holdout = options.holdout > 0 ? options.holdout : std::max(1, options.views / 4);
+    if (holdout >= options.views) {
+        throw UsageError("--holdout " + std::to_string(holdout) + ": must leave at least one of the " +
+                         std::to_string(options.views) + " views for tuning");
+    }
+    const auto start = std::chrono::steady_clock::now();
+    options.optimize.view = "0";
+    PreparedScene prepared = prepareScene(options.optimize);
+    const std::vector<scenes::Camera> cameras = sampleCameras(prepared.scene, options);
+    // Held out: every stride-th view, spread along the list (and so along a path).
+    std::vector<TuneView> views(cameras.size());
+    const int stride = options.views / holdout;
+    int heldOut = 0;
+    for (int k = 0; k < options.views; ++k) {
+        views[std::size_t(k)].camera = cameras[std::size_t(k)];
+        if (k % stride == stride - 1 && heldOut < holdout) {
+            views[std::size_t(k)].heldOut = true;
+            ++heldOut;
+        }
+    }
+    prepareViews(options, prepared, views, output);
+
+    const scheduler::FeatureMode mode = parseFeatureMode(options.features);
+    const scheduler::SceneIndex index(prepared.scene, prepared.settings.width, prepared.settings.height, mode);
+    scheduler::SchedulerParameters parameters;
+    parameters.budgetMs = options.optimize.budgetMs;
+    parameters.switchControl.enabled = false;  // single views: nothing to hold
+    parameters.organisation = parseOrganisation(options.organisation);
+    // The model the optimizer's cost used, without feedback (its warnings were printed once
+    // already by prepareScene).
+    std::ostringstream repeatedWarnings;
+    const TimeEstimator estimator = loadTimeEstimator(options.optimize.profile, options.optimize.model,
+                                                      prepared.scene.name, prepared.settings,
+                                                      prepared.renderer->glRendererString(), repeatedWarnings);
+    scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
+
+    std::vector<scenes::Camera> tuningCameras;
+    for (const TuneView& view : views) {
+        if (!view.heldOut) tuningCameras.push_back(view.camera);
+    }
+    const scheduler::TermScales scales = scheduler::measureTermScales(index, tuningCameras);
+    const int thresholdCount = std::max(1, index.maxLevelCount() - 1);
+    const scheduler::SchedulerCoefficients defaults;
+
+    std::vector<scheduler::ImportanceForm> forms;
+    if (options.form == "published" || options.form == "auto") forms.push_back(scheduler::ImportanceForm::Published);
+    if (options.form == "extended" || options.form == "auto") forms.push_back(scheduler::ImportanceForm::Extended);
+    struct FormResult {
+        scheduler::ImportanceForm form;
+        scheduler::SchedulerCoefficients coefficients;
+        scheduler::PatternSearchResult search;
+        double heldOutMean = 0.0;
+    };
+    std::vector<FormResult> results;
+    for (scheduler::ImportanceForm form : forms) {
+        const scheduler::TuningSpace space(form, scales, thresholdCount);
+        auto objective = [&](const std::vector<double>& x) {
+            return meanFraction(views, false, frameScheduler, space.coefficientsAt(x));
+        };
+        scheduler::PatternSearchOptions searchOptions;
+        searchOptions.maxEvaluations = options.searchEvaluations;
+        searchOptions.seed = options.optimize.seed;
+        FormResult r{form, {}, {}, 0.0};
+        r.search = scheduler::patternSearch(objective, space.pointOf(defaults), space.lower(), space.upper(),
+                                            space.steps(), searchOptions);
+        r.coefficients = space.coefficientsAt(r.search.best);
+        r.heldOutMean = meanFraction(views, true, frameScheduler, r.coefficients);
+        results.push_back(r);
+    }
+    // The form with the better tuning score; ties go to the published (simpler) form. The
+    // held-out views play no part in the choice.
+    std::size_t chosen = 0;
+    for (std::size_t i = 1; i < results.size(); ++i) {
+        if (results[i].search.bestValue > results[chosen].search.bestValue + 1e-12) chosen = i;
+    }
+    const FormResult& best = results[chosen];
+    const double defaultTuning = meanFraction(views, false, frameScheduler, defaults);
+    const double defaultHeldOut = meanFraction(views, true, frameScheduler, defaults);
+
+    nlohmann::json perView = nlohmann::json::array();
+    for (TuneView& view : views) {
+        double defaultFitness = 0.0, tunedFitness = 0.0, defaultMs = 0.0, tunedMs = 0.0;
+        const double defaultFraction = schedulerFraction(view, frameScheduler, defaults, &defaultFitness, &defaultMs);
+        const double tunedFraction = schedulerFraction(view, frameScheduler, best.coefficients, &tunedFitness, &tunedMs);
+        perView.push_back({{"view", view.camera.name},
+                           {"held_out", view.heldOut},
+                           {"resumed", view.resumed},
+                           {"optimizer_fitness", view.optimizerFitness},
+                           {"optimizer_predicted_ms", view.cost->predictSceneMs(view.optimizerLevels)},
+                           {"optimizer_seconds", view.optimizerSeconds},
+                           {"default_fitness", defaultFitness},
+                           {"default_fraction", defaultFraction},
+                           {"default_predicted_ms", defaultMs},
+                           {"tuned_fitness", tunedFitness},
+                           {"tuned_fraction", tunedFraction},
+                           {"tuned_predicted_ms", tunedMs}});
+    }
+    nlohmann::json formsJson = nlohmann::json::object();
+    for (const FormResult& r : results) {
+        formsJson[scheduler::toString(r.form)] = {{"tuning_fraction", r.search.bestValue},
+                                                  {"held_out_fraction", r.heldOutMean},
+                                                  {"search_evaluations", r.search.evaluations},
+                                                  {"coefficients", coefficientsJson(r.coefficients)}};
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    nlohmann::json report = {
+        {"scene", prepared.scene.name},
+        {"budget_ms", options.optimize.budgetMs},
+        {"size", options.optimize.size},
+        {"views", options.views},
+        {"held_out_views", heldOut},
+        {"path", options.path},
+        {"algorithm", options.optimize.algorithm},
+        {"optimizer_evals", options.optimize.maxEvaluations},
+        {"time_model", prepared.timeModelName},
+        {"features", scheduler::toString(mode)},
+        {"organisation", scheduler::toString(parameters.organisation)},
+        {"form", scheduler::toString(best.form)},
+        {"term_scales", {{"distance", scales.distance}, {"area", scales.area}, {"pixels", scales.pixels},
+                         {"center", scales.center}}},
+        {"defaults", {{"tuning_fraction", defaultTuning}, {"held_out_fraction", defaultHeldOut}}},
+        {"tuned", {{"tuning_fraction", best.search.bestValue}, {"held_out_fraction", best.heldOutMean}}},
+        {"forms", formsJson},
+        {"per_view", perView},
+        {"checkpoints", checkpointDir(options.out).string()},
+        {"seconds", seconds},
+    };
+    nlohmann::json document = coefficientsJson(best.coefficients);
+    document["tuning"] = report;
+    writeJsonFile(options.out, document);
+
+    if (output.json) {
+        report["out"] = options.out;
+        report["coefficients"] = coefficientsJson(best.coefficients);
+        printJson(report);
+        return;
+    }
+    std::cout << std::fixed << std::setprecision(4);
+    std::cout << prepared.scene.name << ": " << options.views << " views (" << heldOut << " held out), budget "
+              << options.optimize.budgetMs << " ms, optimizer " << options.optimize.algorithm << "\n";
+    std::cout << "scheduler fitness / optimizer fitness      tuning   held-out\n";
+    std::cout << "  published defaults (a1 0.6, a2 0.4)      " << defaultTuning << "   " << defaultHeldOut << "\n";
+    for (const FormResult& r : results) {
+        std::cout << "  tuned, " << std::left << std::setw(34) << scheduler::toString(r.form) << std::right
+                  << r.search.bestValue << "   " << r.heldOutMean << (&r == &best ? "  <- written" : "") << "\n";
+    }
+    const scheduler::ImportanceCoefficients& a = best.coefficients.importance;
+    std::cout << "  alpha " << a.alpha1 << ", " << a.alpha2 << ", " << a.alpha3 << ", " << a.alpha4
+              << "; thresholds (radii)";
+    std::cout << std::setprecision(2);
+    for (double t : best.coefficients.thresholds.values) std::cout << " " << t;
+    std::cout << "; benchmark scale " << best.coefficients.benchmark.scale << "\n";
+    std::cout << "wrote " << options.out << " (" << std::setprecision(1) << seconds << " s)\n";
+    std::cout.unsetf(std::ios::floatfield);
+}
+
+}  // namespace
+
+void addTuneCommand(CLI::App& app) {
+    auto options = std::make_shared<TuneOptions>();
+    auto output = std::make_shared<OutputOptions>();
+    options->optimize.size = "256x256";
+    options->optimize.maxEvaluations = 150;
+    CLI::App* command =
+        app.add_subcommand("tune", "Fit the scheduler's importance coefficients to the optimizer's answers");
+    OptimizeOptions& o = options->optimize;
+    command->add_option("--scene", o.scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
+    command->add_option("--views", options->views, "Viewpoints to sample (or path frames to take)")
+        ->check(CLI::Range(2, 100000))
+        ->capture_default_str();
+    command->add_option("--path", options->path, "Take the views from a camera path (name or JSON file)");
+    command->add_option("--budget-ms", o.budgetMs, "Predicted render-time budget in milliseconds")
+        ->required()
+        ->check(CLI::PositiveNumber);
+    command->add_option("--out", options->out, "Coefficients file to write (JSON)")->capture_default_str();
+    command->add_option("--algo", o.algorithm, "Optimizer per view: " + algorithmList())->capture_default_str();
+    command->add_option("--evals", o.maxEvaluations, "Optimizer evaluation budget per view")
+        ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 40))
+        ->capture_default_str();
+    command->add_option("--max-iterations", o.maxIterations, "Optimizer iterations per view")
+        ->check(CLI::Range(0, 1000000))
+        ->capture_default_str();
+    command->add_option("--search-evals", options->searchEvaluations, "Coefficient-search evaluations per form")
+        ->check(CLI::Range(1, 1000000))
+        ->capture_default_str();
+    command->add_option("--holdout", options->holdout, "Held-out views (default: a quarter, at least 1)")
+        ->check(CLI::Range(1, 100000));
+    command->add_option("--form", options->form, "Importance form: published, extended, or auto (tuning chooses)")
+        ->check(CLI::IsMember({"auto", "published", "extended"}))
+        ->capture_default_str();
+    command->add_option("--features", options->features, "Scheduler features: bounds or exact")
+        ->check(CLI::IsMember({"bounds", "exact"}))
+        ->capture_default_str();
+    command->add_option("--organisation", options->organisation, "Scheduler: flat or tiles")
+        ->check(CLI::IsMember({"flat", "tiles"}))
+        ->capture_default_str();
+    command->add_option("--seed", o.seed, "Seed of the viewpoints, the optimizer and the search")->capture_default_str();
+    command->add_option("--size", o.size, "Render size WIDTHxHEIGHT")->capture_default_str();
+    command->add_option("--threads", o.threads, "Evaluation threads")->check(CLI::Range(1, 256));
+    command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();
+    command->add_option("--profile", o.profile, "Device profile from 'lodopt calibrate' (default: shipped)");
+    command->add_option("--model", o.model, "Time model in the profile");
+    command->add_flag("--resume", options->resume, "Skip views whose checkpoint exists with the same settings");
+    addOutputOptions(*command, *output);
+    command->callback([options, output] { runTune(*options, *output); });
+}
+
+}  // namespace lodopt::cli

@@ -1,0 +1,54 @@
+// The sections of `lodopt report`, one per kind of output folder (docs/report.md):
+//   optimize  result.json, curve.csv, optimized.png, reference.png (a folder per view with
+//             --view all): facts, reference | optimized | baseline | SSIM map | difference,
+//             the chosen levels per object, the fitness curve;
+//   compare   compare.json, compare.csv, curves.csv: fitness against evaluations per algorithm,
+//             median with the min–max band over seeds, and the final fitness per algorithm;
+//   schedule  frames.csv (+ summary.json): predicted and measured frame time along the path with
+//             the budget, decision time, switches, and the levels histogram over frames;
+//   tune      a coefficients file with a "tuning" object: scheduler vs optimizer fitness per view;
+//   calibrate a device profile: error per time model, predicted against measured per sample;
+//   bench     bench.json and its CSVs (report_bench.hpp).
+// Each function reads its files (bad content → UsageError naming the file), writes its plots
+// through the Plotter and appends HTML. A missing optional file leaves out what needs it.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "report_html.hpp"
+#include "report_plot.hpp"
+
+namespace lodopt::cli {
+
+struct ReportOptions {
+    // Algorithm whose answer is shown beside the optimized image ("none" = no baseline). It is
+    // re-run on the scene named in result.json; needs the scene (built-in, or the glTF path
+    // still valid) and a time model (--profile, else the one result.json names, else shipped).
+    std::string baseline = "screensize";
+    std::string profile;  // device profile for the baseline's time model
+};
+
+struct ReportContext {
+    HtmlReport& html;
+    const Plotter& plotter;
+    ReportOptions options;
+    // Plot file names start with this (unique per section: several views, several folders).
+    std::string prefix;
+    // Shows a plot (or its note) with `caption` under it.
+    void plot(const PlotSpec& spec, const std::string& caption) const;
+};
+
+void addOptimizeSection(ReportContext& context, const std::filesystem::path& folder);
+void addCompareSection(ReportContext& context, const std::filesystem::path& folder);
+void addScheduleSection(ReportContext& context, const std::filesystem::path& framesCsv);
+void addTuneSection(ReportContext& context, const std::filesystem::path& file, const nlohmann::json& document);
+void addProfileSection(ReportContext& context, const std::filesystem::path& file);
+
+// Top-level scalars of `document` (and one level of nested objects as "outer.inner") as table
+// rows, for summary files whose fields the report does not know one by one.
+std::vector<std::vector<std::string>> flattenScalars(const nlohmann::json& document);
+
+}  // namespace lodopt::cli

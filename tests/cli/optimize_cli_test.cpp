@@ -1,0 +1,146 @@
+// lodopt optimize and compare end to end: files, fields, feasibility, determinism, errors.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct CommandRun {
+    int exitCode = -1;
+    std::string output;
+};
+
+CommandRun lodopt(const std::string& arguments) {
+    const std::string command = std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null";
+    CommandRun run;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return run;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) run.output.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+class OptimizeCli : public testing::Test {
+protected:
+    static std::filesystem::path dir;
+
+    static void SetUpTestSuite() {
+        dir = std::filesystem::temp_directory_path() / ("lodopt-optimize-cli-" + std::to_string(::getpid()));
+        std::filesystem::remove_all(dir);
+        std::filesystem::create_directories(dir);
+    }
+    static void TearDownTestSuite() { std::filesystem::remove_all(dir); }
+
+    static nlohmann::json readJson(const std::filesystem::path& path) {
+        std::ifstream in(path);
+        return nlohmann::json::parse(in);
+    }
+};
+std::filesystem::path OptimizeCli::dir;
+
+const char* kSmall = " --scene harbor --size 128x128 --max-iterations 8 --quiet";
+
+}  // namespace
+
+TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
+    const auto out = dir / "gapso";
+    CommandRun run = lodopt(std::string("optimize") + kSmall + " --view ship_close --budget-ms 4 --seed 2 --out " +
+                     out.string() + " --json");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    nlohmann::json printed = nlohmann::json::parse(run.output);
+    nlohmann::json result = readJson(out / "result.json");
+    EXPECT_EQ(printed["combination"], result["combination"]);
+    for (const char* key : {"levels", "fitness", "ssim", "boundary_entropy", "information_entropy", "precision", "recall",
+                            "predicted_ms", "budget_ms", "evaluations", "cache_hits", "skipped_objects",
+                            "setup_seconds", "evals_per_second", "wall_seconds"}) {
+        EXPECT_TRUE(result.contains(key)) << key;
+    }
+    EXPECT_LE(result["predicted_ms"].get<double>(), 4.0);
+    EXPECT_GT(result["fitness"].get<double>(), 0.5);
+    EXPECT_LE(result["fitness"].get<double>(), 1.0);
+    EXPECT_EQ(result["levels"].size(), 3u);
+    EXPECT_TRUE(result["levels"].contains("ship"));
+    EXPECT_GT(result["evaluations"].get<int>(), 0);
+    EXPECT_TRUE(std::filesystem::exists(out / "curve.csv"));
+    EXPECT_TRUE(std::filesystem::exists(out / "optimized.png"));
+    EXPECT_TRUE(std::filesystem::exists(out / "reference.png"));
+    std::ifstream curve(out / "curve.csv");
+    std::string header;
+    std::getline(curve, header);
+    EXPECT_EQ(header.rfind("iteration,best_fitness,mean_fitness", 0), 0u) << header;
+}
+
+TEST_F(OptimizeCli, BudgetBelowTheCheapestCombinationIsBadInputStatingTheMinimum) {
+    const std::string command = std::string(LODOPT_EXECUTABLE) + " optimize" + kSmall + " --budget-ms 0.01 --out " +
+                                (dir / "none").string() + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string text;
+    std::array<char, 4096> buffer;
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) text.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+    EXPECT_NE(text.find("cheapest"), std::string::npos) << text;
+    EXPECT_FALSE(std::filesystem::exists(dir / "none" / "result.json"));
+}
+
+TEST_F(OptimizeCli, SameSeedSameResultAcrossThreadCounts) {
+    auto resultOf = [&](const std::string& name, const std::string& extra) {
+        const auto out = dir / name;
+        CommandRun run = lodopt(std::string("optimize") + kSmall + " --budget-ms 4.5 --seed 5 --out " + out.string() + extra);
+        EXPECT_EQ(run.exitCode, 0);
+        nlohmann::json result = readJson(out / "result.json");
+        for (const char* timing : {"setup_seconds", "evals_per_second", "search_seconds", "wall_seconds"}) {
+            result.erase(timing);
+        }
+        return result;
+    };
+    nlohmann::json one = resultOf("t1", " --threads 1");
+    nlohmann::json two = resultOf("t2", " --threads 2");
+    nlohmann::json again = resultOf("t1b", " --threads 1");
+    EXPECT_EQ(one, two);
+    EXPECT_EQ(one, again);
+}
+
+TEST_F(OptimizeCli, FullEvaluationPathAgreesWithTheFastPath) {
+    CommandRun fast = lodopt(std::string("optimize") + kSmall + " --algo exhaustive --budget-ms 4 --out " +
+                      (dir / "fast").string() + " --json");
+    CommandRun full = lodopt(std::string("optimize") + kSmall + " --algo exhaustive --eval full --budget-ms 4 --out " +
+                      (dir / "full").string() + " --json");
+    ASSERT_EQ(fast.exitCode, 0);
+    ASSERT_EQ(full.exitCode, 0);
+    nlohmann::json a = nlohmann::json::parse(fast.output), b = nlohmann::json::parse(full.output);
+    EXPECT_EQ(a["combination"], b["combination"]);
+    EXPECT_NEAR(a["search_fitness"].get<double>(), b["search_fitness"].get<double>(), 1e-3);
+}
+
+TEST_F(OptimizeCli, CompareWritesATableForEveryAlgorithm) {
+    const auto out = dir / "compare";
+    CommandRun run = lodopt(std::string("compare") + kSmall +
+                     " --budget-ms 4 --algos gapso,pso,random,screensize --seeds 2 --evals 20 --out " + out.string() +
+                     " --json");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    nlohmann::json table = nlohmann::json::parse(run.output);
+    ASSERT_EQ(table["algorithms"].size(), 4u);
+    for (const auto& row : table["algorithms"]) {
+        EXPECT_LE(row["median_fitness"].get<double>(), table["best_known_fitness"].get<double>());
+        EXPECT_LE(row["median_evaluations"].get<double>(), 20.0 + 1e-9) << row["algorithm"];
+    }
+    EXPECT_TRUE(std::filesystem::exists(out / "compare.csv"));
+    EXPECT_TRUE(std::filesystem::exists(out / "curves.csv"));
+}
+
+TEST_F(OptimizeCli, BadOptionsAreUsageErrors) {
+    EXPECT_EQ(lodopt("optimize --budget-ms 4 --algo magic --out " + (dir / "x").string()).exitCode, 2);
+    EXPECT_EQ(lodopt("optimize --budget-ms -1").exitCode, 2);
+    EXPECT_EQ(lodopt("optimize --budget-ms 4 --weights 0,0,0").exitCode, 2);
+    EXPECT_EQ(lodopt("optimize --budget-ms 4 --weights a,b").exitCode, 2);
+    EXPECT_EQ(lodopt("optimize").exitCode, 2);  // --budget-ms is required
+}

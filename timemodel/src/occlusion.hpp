@@ -1,0 +1,22 @@
+// A coarse software depth pass (private to the module): which share of each object's
+// rasterized fragments survives the depth test when the reference frame (every object at
+// level 0) is drawn in object order, as the renderer draws it. Early depth testing lets
+// llvmpipe skip shading hidden fragments, so hidden and visible fragments cost differently;
+// this share turns an object's rasterized area into an estimate of its shaded area.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scenes/scene.hpp"
+
+namespace lodopt::timemodel::detail {
+
+// Per object: passed / rasterized fragments on a grid whose longer side is `resolution`
+// cells (1 when the object rasterizes no fragment). `viewProjection` maps world to clip
+// space; `aspect` = width / height of the real viewport.
+std::vector<double> depthPassShares(const scenes::Scene& scene, const glm::mat4& viewProjection, float aspect,
+                                    int resolution = 128);
+
+}  // namespace lodopt::timemodel::detail

@@ -1,0 +1,108 @@
+// Raster features of a level's geometry for one viewpoint: what llvmpipe actually works on.
+// llvmpipe clips and bins every triangle that is not trivially outside the frustum, rasterizes
+// its area (partial 4x4 blocks along its edges cost extra) and, with early depth testing,
+// shades only the fragments that pass. See features.hpp for the measurements behind them.
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdint>
+
+#include "timemodel/features.hpp"
+
+namespace lodopt::timemodel {
+
+namespace {
+
+// Outcode bits: outside the plane x < -w, x > w, y < -w, y > w, z < -w (near), z > w (far).
+std::uint8_t outcode(const glm::vec4& p) {
+    std::uint8_t code = 0;
+    if (p.x < -p.w) code |= 1;
+    if (p.x > p.w) code |= 2;
+    if (p.y < -p.w) code |= 4;
+    if (p.y > p.w) code |= 8;
+    if (p.z < -p.w) code |= 16;
+    if (p.z > p.w) code |= 32;
+    return code;
+}
+
+// Clips polygon `in` (n points) to the half plane `sign * coordinate(p) <= limit`.
+int clipAxis(const glm::dvec2* in, int n, int axis, double sign, double limit, glm::dvec2* out) {
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+        const glm::dvec2& p = in[i];
+        const glm::dvec2& q = in[(i + 1) % n];
+        const double dp = limit - sign * p[axis], dq = limit - sign * q[axis];
+        if (dp >= 0.0) out[count++] = p;
+        if ((dp >= 0.0) != (dq >= 0.0)) out[count++] = p + (q - p) * (dp / (dp - dq));
+    }
+    return count;
+}
+
+// Screen area in pixels of triangle (a, b, c) in clip space, clipped to the near plane and the
+// viewport; adds the length of its clipped edges that are not on the viewport border to `edges`.
+double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, double halfWidth,
+                            double halfHeight, double& edges) {
+    glm::vec4 polygon[4];
+    int count = 0;
+    const glm::vec4 in[3] = {a, b, c};
+    for (int i = 0; i < 3; ++i) {  // Sutherland–Hodgman against z >= -w
+        const glm::vec4& p = in[i];
+        const glm::vec4& q = in[(i + 1) % 3];
+        const float dp = p.z + p.w, dq = q.z + q.w;
+        if (dp >= 0.0f) polygon[count++] = p;
+        if ((dp >= 0.0f) != (dq >= 0.0f)) polygon[count++] = p + (q - p) * (dp / (dp - dq));
+    }
+    if (count < 3) return 0.0;
+    // Each clip adds at most one point: 4 after the near plane, 8 after the viewport.
+    glm::dvec2 screen[8], other[8];
+    for (int i = 0; i < count; ++i) {
+        const double w = std::max(double(polygon[i].w), 1e-12);
+        screen[i] = {double(polygon[i].x) / w * halfWidth, double(polygon[i].y) / w * halfHeight};
+    }
+    count = clipAxis(screen, count, 0, 1.0, halfWidth, other);
+    count = clipAxis(other, count, 0, -1.0, halfWidth, screen);
+    count = clipAxis(screen, count, 1, 1.0, halfHeight, other);
+    count = clipAxis(other, count, 1, -1.0, halfHeight, screen);
+    if (count < 3) return 0.0;
+    double twiceArea = 0.0;
+    auto onBorder = [&](const glm::dvec2& p, const glm::dvec2& q) {
+        const double ex = 1e-9 * halfWidth, ey = 1e-9 * halfHeight;
+        return (std::abs(std::abs(p.x) - halfWidth) < ex && std::abs(q.x - p.x) < ex) ||
+               (std::abs(std::abs(p.y) - halfHeight) < ey && std::abs(q.y - p.y) < ey);
+    };
+    for (int i = 0; i < count; ++i) {
+        const glm::dvec2& p = screen[i];
+        const glm::dvec2& q = screen[(i + 1) % count];
+        twiceArea += p.x * q.y - q.x * p.y;
+        if (!onBorder(p, q)) edges += glm::length(q - p);
+    }
+    return 0.5 * std::abs(twiceArea);
+}
+
+}  // namespace
+
+RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
+                              int height) {
+    assert(width > 0 && height > 0);
+    RasterFeatures result;
+    std::vector<glm::vec4> clip;
+    std::vector<std::uint8_t> codes;
+    for (const scenes::Mesh& mesh : meshes) {
+        clip.resize(mesh.positions.size());
+        codes.resize(mesh.positions.size());
+        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+            clip[v] = modelViewProjection * glm::vec4(mesh.positions[v], 1.0f);
+            codes[v] = outcode(clip[v]);
+        }
+        for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+            const std::uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
+            if (codes[a] & codes[b] & codes[c]) continue;  // trivially outside one plane
+            result.visibleTriangles += 1.0;
+            result.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height,
+                                                        result.edgePixels);
+        }
+    }
+    return result;
+}
+
+}  // namespace lodopt::timemodel
