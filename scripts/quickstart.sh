@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # lodopt quick start: installs what is missing (Debian 12, as root), builds, then
 #   scripts/quickstart.sh run   runs the main job on the built-in default scene
-#   scripts/quickstart.sh test  runs the whole test suite through CTest
+#   scripts/quickstart.sh test  runs the whole test suite through CTest, then again under
+#                               ASan + UBSan (scripts/sanitize.sh) and fuzzes (scripts/fuzz.sh)
 # Idempotent: packages already installed are not touched, the build is incremental.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,6 +15,7 @@ packages=(
   libosmesa6-dev libopencv-dev libopenimageio-dev openimageio-tools
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
+  clang libclang-rt-14-dev
 )
 missing=()
 for package in "${packages[@]}"; do
@@ -33,9 +35,15 @@ cmake --build "$build" -j"$(nproc)"
 
 if [ "$mode" = run ]; then
   out=${LODOPT_OUT:-out/quickstart}
-  "$build"/cli/lodopt render --scene harbor --view overview --out "$out/harbor_reference.png"
-  "$build"/cli/lodopt render --scene harbor --view overview --levels 5,4,4 --out "$out/harbor_coarse.png"
-  echo "quickstart: images are in $out/"
+  # The main job: the best LOD combination of the default scene under a 4 ms budget.
+  "$build"/cli/lodopt optimize --scene harbor --view overview --budget-ms 4 --seed 1 --out "$out"
+  echo "quickstart: result.json, curve.csv, optimized.png and reference.png are in $out/"
 else
   ctest --test-dir "$build" --output-on-failure -j2 --timeout 900
+  # Then the same suite under ASan + UBSan (build-asan) and bounded fuzzing of every fuzz
+  # target (docs/robustness.md). LODOPT_SKIP_SANITIZERS=1 skips both for a quick local run.
+  if [ "${LODOPT_SKIP_SANITIZERS:-0}" != 1 ]; then
+    scripts/sanitize.sh
+    scripts/fuzz.sh "${LODOPT_FUZZ_SECONDS:-60}"
+  fi
 fi

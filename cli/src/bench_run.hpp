@@ -13,7 +13,7 @@
 //  3. metrics: time per call of each metrics function on the view's reference and a candidate,
 //     and its deviation from a straightforward float64 OpenCV implementation;
 //  4. time model: every model of the device profile, its held-out error from calibration and
-//     its error on frames of this view rendered and timed now.
+//     its error on random frames of this view rendered and timed now (the profile's clock).
 // Timings are medians; all of it runs in this process on one GL context.
 #pragma once
 
@@ -90,7 +90,8 @@ struct TimeModelRow {
     std::size_t samples = 0;
     double mean = NAN, median = NAN, p90 = NAN, max = NAN;  // |t_act − t_est| / t_act
 };
-// `frames` random combinations of the view timed with `repeats` draws each (median).
+// `frames` random combinations of the view, each timed with `repeats` draws under the
+// profile's clock (least wall time by default, as `lodopt calibrate` fits it).
 // `warnings` gets the profile's mismatch sentences (render size, renderer, machine).
 std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewContext& context,
                                             const OptimizeOptions& options, int frames, int repeats,

@@ -9,13 +9,13 @@
 // draws of draw + glFinish (renderer::Renderer::drawAndFinish), each on the steady clock and
 // on the process CPU clock (all of llvmpipe's threads). The fitted time is the statistic that
 // --clock names (timemodel::TimingSettings); all three are kept in the profile.
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
-
-#include <time.h>
 
 #include "cli_common.hpp"
 #include "progress.hpp"
@@ -156,8 +156,9 @@ void runCalibrate(const CalibrateOptions& options) {
         recorded.wallMinMs = *std::min_element(t.passMin.begin(), t.passMin.end());
         recorded.wallMedianMs = median(t.passMedian);
         recorded.cpuMs = median(t.passCpu);
-        const std::vector<double>& perPass =
-            options.clock == "cpu" ? t.passCpu : options.clock == "wall-median" ? t.passMedian : t.passMin;
+        const std::vector<double>& perPass = options.clock == "cpu"           ? t.passCpu
+                                             : options.clock == "wall-median" ? t.passMedian
+                                                                              : t.passMin;
         timemodel::Sample& sample = recorded.sample;
         sample.features = tables[planned.viewpoint].features(planned.combination);
         sample.measuredMs = options.clock == "cpu"           ? recorded.cpuMs
@@ -222,7 +223,8 @@ void runCalibrate(const CalibrateOptions& options) {
             nlohmann::json entry = {{"name", r.name}, {"fitted", r.fitted}};
             if (!r.fitted) entry["failure"] = r.failure;
             nlohmann::json coefficients = nlohmann::json::object();
-            for (std::size_t c = 0; c < r.coefficients.size(); ++c) coefficients[r.coefficientNames[c]] = r.coefficients[c];
+            for (std::size_t c = 0; c < r.coefficients.size(); ++c)
+                coefficients[r.coefficientNames[c]] = r.coefficients[c];
             entry["coefficients"] = coefficients;
             entry["held_out_errors"] = errorsJson(r.heldOutErrors);
             entry["fit_errors"] = errorsJson(r.fitErrors);
@@ -280,8 +282,8 @@ void runCalibrate(const CalibrateOptions& options) {
         std::cout << "same draws, clock " << other.clock << ":";
         for (const timemodel::ModelResult& r : other.models) {
             if (!r.fitted) continue;
-            std::snprintf(line, sizeof line, "  %s mean %.1f%% p90 %.1f%%", r.name.c_str(), 100.0 * r.heldOutErrors.mean,
-                          100.0 * r.heldOutErrors.p90);
+            std::snprintf(line, sizeof line, "  %s mean %.1f%% p90 %.1f%%", r.name.c_str(),
+                          100.0 * r.heldOutErrors.mean, 100.0 * r.heldOutErrors.p90);
             std::cout << line;
         }
         std::cout << "\n";
@@ -314,8 +316,9 @@ void addCalibrateCommand(CLI::App& app) {
     command->add_option("--max-rounds", options->maxRounds, "Most passes while within --time-budget")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
-    command->add_option("--time-budget", options->timeBudget,
-                        "Seconds after which no further pass starts (beyond --rounds)")
+    command
+        ->add_option("--time-budget", options->timeBudget,
+                     "Seconds after which no further pass starts (beyond --rounds)")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 86400.0));
     command->add_option("--repeats", options->repeats, "Timed draws per sample per pass (median)")
@@ -324,8 +327,9 @@ void addCalibrateCommand(CLI::App& app) {
     command->add_option("--warmup", options->warmup, "Untimed draws before each timed batch")
         ->capture_default_str()
         ->check(CLI::Range(0, 100));
-    command->add_option("--clock", options->clock,
-                        "Fitted time: wall-min (least wall time), wall-median, or cpu (process CPU time)")
+    command
+        ->add_option("--clock", options->clock,
+                     "Fitted time: wall-min (least wall time), wall-median, or cpu (process CPU time)")
         ->capture_default_str()
         ->check(CLI::IsMember(timemodel::timingClockNames()));
     command->add_option("--out", options->out, "Device profile to write (JSON)")->capture_default_str();

@@ -98,8 +98,8 @@ void runEstimate(const EstimateOptions& options) {
                    {"warnings", warnings}});
         return;
     }
-    std::cout << "predicted_ms " << predictedMs << " (" << model->name() << " model, " << source << "; "
-              << scene.name << ", view '" << scene.views[view].name << "', " << width << "x" << height << ")\n";
+    std::cout << "predicted_ms " << predictedMs << " (" << model->name() << " model, " << source << "; " << scene.name
+              << ", view '" << scene.views[view].name << "', " << width << "x" << height << ")\n";
 }
 
 }  // namespace

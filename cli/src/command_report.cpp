@@ -149,8 +149,9 @@ void runReport(const ReportCommandOptions& options) {
     }
 
     const Plotter plotter(plotDir.string());
-    HtmlReport html("lodopt report: " + (folder ? input.filename().string() : input.filename().string()));
-    html.raw("<p class=\"meta\">" + escapeHtml("From " + fs::absolute(input).lexically_normal().string() + ", " +
+    const fs::path canonical = fs::weakly_canonical(input);
+    HtmlReport html("lodopt report: " + (canonical.filename().empty() ? canonical.string() : canonical.filename().string()));
+    html.raw("<p class=\"meta\">" + escapeHtml("From " + canonical.string() + ", " +
                                                timemodel::currentDateUtc() + ", lodopt 0.1.0. Plots: " +
                                                plotter.description() + "; their data and gnuplot scripts are in " +
                                                plotDir.filename().string() + "/ beside this page.") +

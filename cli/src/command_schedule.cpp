@@ -17,6 +17,7 @@
 #include "schedule_common.hpp"
 #include "scheduler/scheduler.hpp"
 #include "time_profile.hpp"
+#include "timemodel/features.hpp"
 
 namespace lodopt::cli {
 namespace {
@@ -30,6 +31,7 @@ struct ScheduleOptions {
     bool render = false;
     bool noFitness = false;
     bool noBaseline = false;
+    bool checkFeatures = false;
     std::string size = "512x512";
     std::string profile;
     std::string model;
@@ -59,6 +61,7 @@ struct FrameRow {
     double predictedMs = 0.0;
     double finestPredictedMs = 0.0;
     double baselinePredictedMs = 0.0;
+    double exactPredictedMs = NAN;
     double measuredMs = NAN;
     double baselineMeasuredMs = NAN;
     double fitness = NAN;
@@ -78,7 +81,7 @@ std::string csvNumber(double value) {
 std::string framesCsv(const std::vector<FrameRow>& rows, int maxLevels) {
     std::ostringstream csv;
     csv << "frame,time_s,decision_us,predicted_ms,measured_ms,finest_predicted_ms,baseline_predicted_ms,"
-           "baseline_measured_ms,budget_reachable,budget_met,fitness,baseline_fitness,visible,culled,dropped,drawn,"
+           "baseline_measured_ms,exact_predicted_ms,budget_reachable,budget_met,fitness,baseline_fitness,visible,culled,dropped,drawn,"
            "protected_lowered,forced_switches,switches,held,feedback_scale";
     for (int l = 0; l < maxLevels; ++l) csv << ",level_" << l;
     csv << "\n";
@@ -88,6 +91,7 @@ std::string framesCsv(const std::vector<FrameRow>& rows, int maxLevels) {
         csv << r.frame << ',' << csvNumber(r.timeSeconds) << ',' << csvNumber(r.decisionMicroseconds) << ','
             << csvNumber(r.predictedMs) << ',' << csvNumber(r.measuredMs) << ',' << csvNumber(r.finestPredictedMs)
             << ',' << csvNumber(r.baselinePredictedMs) << ',' << csvNumber(r.baselineMeasuredMs) << ','
+            << csvNumber(r.exactPredictedMs) << ','
             << int(d.budgetReachable) << ',' << int(d.budgetMet) << ',' << csvNumber(r.fitness) << ','
             << csvNumber(r.baselineFitness) << ',' << d.visibleObjects << ',' << d.culledObjects << ','
             << d.droppedObjects << ',' << drawn << ',' << d.protectedLowered << ',' << d.forcedSwitches << ','
@@ -191,6 +195,11 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         // The unscheduled baseline: the distance thresholds' levels of the visible objects.
         baseline = frameScheduler.initialLevels();
         row.baselinePredictedMs = predictInLastFrame(frameScheduler, baseline);
+        if (options.checkFeatures) {
+            // The same levels with the time model's exact features (walks the geometry).
+            const timemodel::FeatureTable table(scene, camera, settings.width, settings.height);
+            row.exactPredictedMs = frameScheduler.model().estimateMs(table.features(decision.levels));
+        }
         row.histogram.assign(std::size_t(maxLevels), 0);
         for (int level : decision.levels) {
             if (level != scenes::kNotDrawn) ++row.histogram[std::size_t(level)];
@@ -216,7 +225,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     progress.finish();
 
     // Summary.
-    std::vector<double> decisionUs, predicted, measured, baselineMeasured, fitness, baselineFitness, error;
+    std::vector<double> decisionUs, predicted, measured, baselineMeasured, fitness, baselineFitness, error, featureError;
     int switches = 0, forced = 0, protectedFrames = 0, unreachable = 0, overPredicted = 0, dropped = 0;
     for (const FrameRow& r : rows) {
         decisionUs.push_back(r.decisionMicroseconds);
@@ -226,6 +235,9 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
             error.push_back(std::abs(r.measuredMs - r.predictedMs) / r.measuredMs);
         }
         if (!std::isnan(r.baselineMeasuredMs)) baselineMeasured.push_back(r.baselineMeasuredMs);
+        if (!std::isnan(r.exactPredictedMs) && r.exactPredictedMs > 0.0) {
+            featureError.push_back(std::abs(r.predictedMs - r.exactPredictedMs) / r.exactPredictedMs);
+        }
         if (!std::isnan(r.fitness)) fitness.push_back(r.fitness);
         if (!std::isnan(r.baselineFitness)) baselineFitness.push_back(r.baselineFitness);
         switches += r.decision.switches;
@@ -267,6 +279,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         {"dropped_objects_per_frame", rows.empty() ? 0.0 : double(dropped) / rows.size()},
         {"final_feedback_scale", frameScheduler.model().feedbackScale()},
     };
+    if (options.checkFeatures) summary["bounds_vs_exact_prediction_error"] = spreadJson(spreadOf(featureError));
     if (options.render) {
         summary["measured_ms"] = spreadJson(spreadOf(measured));
         summary["prediction_error"] = spreadJson(spreadOf(error));
@@ -334,6 +347,8 @@ void addScheduleCommand(CLI::App& app) {
     command->add_flag("--render", options->render, "Render, time and score every frame; feed the time back");
     command->add_flag("--no-fitness", options->noFitness, "With --render: skip the fitness against the reference");
     command->add_flag("--no-baseline", options->noBaseline, "With --render: skip the unscheduled baseline");
+    command->add_flag("--check-features", options->checkFeatures,
+                      "Also predict each decision from exact features (exact_predicted_ms; slow)");
     command->add_option("--size", options->size, "Render size WIDTHxHEIGHT (as calibrated)")->capture_default_str();
     command->add_option("--profile", options->profile, "Device profile from 'lodopt calibrate' (default: shipped)");
     command->add_option("--model", options->model, "Time model in the profile (default: the profile's default)");

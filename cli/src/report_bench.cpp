@@ -246,9 +246,9 @@ void addProfileSection(ReportContext& context, const fs::path& file) {
         }
         scatter << "\n\n";
         plots << ", " << (block == 0 ? "'" + scatterName + ".dat'" : std::string("''")) << " index " << block
-              << " using 1:($3 ? $2 : 1/0) with points pt 7 ps 0.8 lc rgb '"
+              << " using 1:($3 > 0.5 ? $2 : 1/0) with points pt 7 ps 0.8 lc rgb '"
               << seriesColor(block) << "' title '" << result.name << " (held out)', '' index " << block
-              << " using 1:($3 ? 1/0 : $2) with points pt 6 ps 0.7 lc rgb '" << seriesColor(block) << "' title '"
+              << " using 1:($3 > 0.5 ? 1/0 : $2) with points pt 6 ps 0.7 lc rgb '" << seriesColor(block) << "' title '"
               << result.name << " (fitted)'";
         ++block;
     }

@@ -1,5 +1,6 @@
 #include "report_html.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -48,11 +49,25 @@ std::string base64Encode(const std::vector<std::uint8_t>& bytes) {
     return out;
 }
 
-std::string dataUri(const std::string& path) {
+namespace {
+
+std::vector<std::uint8_t> readBytes(const std::string& path) {
     std::ifstream file(path, std::ios::binary);
     if (!file) throw std::runtime_error(path + ": cannot be read");
-    const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
     if (bytes.empty()) throw std::runtime_error(path + ": empty file");
+    return bytes;
+}
+
+// Width in pixels from a PNG header (signature, then the IHDR chunk), 0 when not a PNG.
+int pngWidth(const std::vector<std::uint8_t>& bytes) {
+    static const std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (bytes.size() < 24 || !std::equal(kSignature, kSignature + 8, bytes.begin())) return 0;
+    return int((std::uint32_t(bytes[16]) << 24) | (std::uint32_t(bytes[17]) << 16) | (std::uint32_t(bytes[18]) << 8) |
+               bytes[19]);
+}
+
+std::string dataUriOf(const std::string& path, const std::vector<std::uint8_t>& bytes) {
     std::string type = "image/png";
     const std::size_t dot = path.rfind('.');
     const std::string extension = dot == std::string::npos ? "" : path.substr(dot + 1);
@@ -60,6 +75,10 @@ std::string dataUri(const std::string& path) {
     else if (extension == "jpg" || extension == "jpeg") type = "image/jpeg";
     return "data:" + type + ";base64," + base64Encode(bytes);
 }
+
+}  // namespace
+
+std::string dataUri(const std::string& path) { return dataUriOf(path, readBytes(path)); }
 
 std::string formatNumber(double value, int digits) {
     if (std::isnan(value)) return "–";
@@ -87,17 +106,16 @@ td:first-child, th:first-child { text-align: left; }
 tr:nth-child(even) td { background: #f4f6fa; }
 .row { display: flex; flex-wrap: wrap; gap: 14px; align-items: flex-start; margin: 8px 0 12px; }
 figure { margin: 0; background: #fff; border: 1px solid #dde2ec; border-radius: 4px; padding: 6px;
-         display: table; }
+         max-width: 100%; box-sizing: border-box; }
 figure img { display: block; max-width: 100%; height: auto; }
 figure img.pixels { image-rendering: pixelated; }
-figcaption { font-size: 0.85em; color: #4a5368; padding-top: 4px; display: table-caption; caption-side: bottom;
-             background: #fff; }
+figcaption { font-size: 0.85em; color: #4a5368; margin-top: 4px; }
 .note { background: #fff6db; border-left: 4px solid #e0b100; padding: 6px 10px; margin: 8px 0;
         font-size: 0.92em; }
 .missing { width: 260px; min-height: 80px; display: flex; align-items: center; justify-content: center;
            background: #f3f3f3; color: #6a6a6a; font-size: 0.85em; padding: 8px; text-align: center; }
-.legend { display: flex; align-items: center; gap: 8px; font-size: 0.85em; margin: 2px 0 10px; }
-.legend .bar { width: 260px; height: 14px; border: 1px solid #999; }
+.legend { display: flex; align-items: center; gap: 6px; font-size: 0.8em; margin-top: 4px; }
+.legend .bar { flex: 1; height: 12px; border: 1px solid #999; }
 details { margin: 6px 0 12px; }
 pre { background: #f1f3f8; padding: 8px; overflow-x: auto; font-size: 0.82em; }
 .meta { color: #4a5368; font-size: 0.9em; }
@@ -119,6 +137,15 @@ std::string anchorOf(const std::string& text, std::set<std::string>& used) {
 }
 
 }  // namespace
+
+ReportImage makeImage(std::string path, std::string caption, std::string note, int displayWidth) {
+    ReportImage image;
+    image.path = std::move(path);
+    image.caption = std::move(caption);
+    image.note = std::move(note);
+    image.displayWidth = displayWidth;
+    return image;
+}
 
 HtmlReport::HtmlReport(std::string title) : mTitle(std::move(title)) {}
 
@@ -151,37 +178,40 @@ void HtmlReport::table(const std::vector<std::string>& header, const std::vector
 void HtmlReport::images(const std::vector<ReportImage>& pictures) {
     std::string html = "<div class=\"row\">\n";
     for (const ReportImage& picture : pictures) {
-        html += "<figure>";
         std::string uri;
         std::string why = picture.note;
+        int width = 0, natural = 0;
         if (!picture.path.empty()) {
             try {
-                uri = dataUri(picture.path);
+                const std::vector<std::uint8_t> bytes = readBytes(picture.path);
+                uri = dataUriOf(picture.path, bytes);
+                natural = pngWidth(bytes);
+                width = picture.displayWidth > 0 ? picture.displayWidth : natural;
             } catch (const std::exception& error) {
                 why = error.what();
             }
         }
+        // The figure is as wide as its picture, so a long caption wraps under it.
+        html += width > 0 ? "<figure style=\"width:" + std::to_string(width + 14) + "px\">" : std::string("<figure>");
         if (!uri.empty()) {
             ++mEmbeddedImages;
             html += "<img src=\"" + uri + "\" alt=\"" + escapeHtml(picture.caption) + "\"";
-            if (picture.displayWidth > 0) {
-                html += " class=\"pixels\" style=\"width:" + std::to_string(picture.displayWidth) + "px\"";
-            }
+            if (picture.displayWidth > natural) html += " class=\"pixels\"";
+            if (width > 0) html += " width=\"" + std::to_string(width) + "\"";
             html += ">";
         } else {
             html += "<div class=\"missing\">" + escapeHtml(why.empty() ? "no picture" : why) + "</div>";
         }
         if (!picture.caption.empty()) html += "<figcaption>" + escapeHtml(picture.caption) + "</figcaption>";
+        if (!picture.legendGradient.empty()) {
+            html += "<div class=\"legend\"><span>" + escapeHtml(picture.legendLow) +
+                    "</span><span class=\"bar\" style=\"background: linear-gradient(to right, " +
+                    escapeHtml(picture.legendGradient) + ")\"></span><span>" + escapeHtml(picture.legendHigh) +
+                    "</span></div>";
+        }
         html += "</figure>\n";
     }
     mBody += html + "</div>\n";
-}
-
-void HtmlReport::colorLegend(const std::string& label, const std::string& cssGradient, const std::string& low,
-                             const std::string& high) {
-    mBody += "<div class=\"legend\"><span>" + escapeHtml(label) + "</span><span>" + escapeHtml(low) +
-             "</span><span class=\"bar\" style=\"background: linear-gradient(to right, " + escapeHtml(cssGradient) +
-             ")\"></span><span>" + escapeHtml(high) + "</span></div>\n";
 }
 
 void HtmlReport::details(const std::string& summary, const std::string& text) {

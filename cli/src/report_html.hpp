@@ -27,9 +27,15 @@ struct ReportImage {
     std::string path;     // PNG/SVG file to embed; empty = show `note` instead
     std::string caption;  // plain text under the picture
     std::string note;     // shown in place of the picture when `path` is empty or unreadable
-    int displayWidth = 0;  // CSS pixels (0 = natural size, capped at the page width); small
-                           // renders are scaled up without smoothing so pixels stay visible
+    int displayWidth = 0;  // CSS pixels (0 = natural size, capped at the page width); a picture
+                           // shown larger than it is is scaled without smoothing (pixels stay crisp)
+    // Optional colour scale under the caption: a CSS linear-gradient stop list and the values
+    // at its two ends.
+    std::string legendGradient;
+    std::string legendLow, legendHigh;
 };
+
+ReportImage makeImage(std::string path, std::string caption, std::string note = {}, int displayWidth = 0);
 
 class HtmlReport {
 public:
@@ -45,10 +51,6 @@ public:
     void table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
     // Pictures side by side (wrapping on narrow screens).
     void images(const std::vector<ReportImage>& pictures);
-    // A horizontal colour legend: `cssGradient` (a CSS linear-gradient argument list) from
-    // `low` to `high` labelled with `label`.
-    void colorLegend(const std::string& label, const std::string& cssGradient, const std::string& low,
-                     const std::string& high);
     // Collapsed preformatted text (a JSON document, a log).
     void details(const std::string& summary, const std::string& text);
     // Trusted HTML, inserted as is.

@@ -23,6 +23,8 @@ namespace fs = std::filesystem;
 constexpr std::size_t kLevelsPlottedPerObject = 60;
 // Renders narrower than this are shown scaled up (without smoothing) so they stay readable.
 constexpr int kSmallImage = 256;
+// Wider renders are shown at this width (the files keep their size).
+constexpr int kLargeImage = 360;
 
 struct SceneFacts {
     std::vector<std::string> names;  // object order
@@ -38,8 +40,10 @@ struct Baseline {
     std::int64_t evaluations = 0;
 };
 
-// The options `lodopt optimize` ran with, as far as result.json tells them.
-OptimizeOptions optionsOf(const nlohmann::json& result, const ReportOptions& report) {
+// The options `lodopt optimize` ran with, as far as `folder`/result.json tells them. Throws
+// UsageError when the profile it names cannot be found (the baseline would otherwise run under
+// another time model than the optimizer did).
+OptimizeOptions optionsOf(const nlohmann::json& result, const fs::path& folder, const ReportOptions& report) {
     OptimizeOptions options;
     options.scene = jsonText(result, "scene", scenes::kDefaultSceneName);
     options.view = jsonText(result, "view", "0");
@@ -61,16 +65,29 @@ OptimizeOptions optionsOf(const nlohmann::json& result, const ReportOptions& rep
     const std::size_t open = model.find(" ("), close = model.rfind(')');
     if (options.profile.empty() && open != std::string::npos && close != std::string::npos && close > open) {
         const std::string source = model.substr(open + 2, close - open - 2);
-        if (source.rfind("shipped", 0) != 0 && fs::exists(source)) options.profile = source;
+        if (source.rfind("shipped", 0) != 0) {
+            // The path was relative to where optimize ran: try here, then beside the result.
+            for (const fs::path& candidate : {fs::path(source), folder / source, folder.parent_path() / source}) {
+                if (fs::exists(candidate)) {
+                    options.profile = candidate.string();
+                    break;
+                }
+            }
+            if (options.profile.empty()) {
+                throw UsageError("the device profile '" + source + "' that result.json names is not found here; pass "
+                                 "--profile FILE (or --baseline none)");
+            }
+        }
     }
     return options;
 }
 
-Baseline runBaseline(const nlohmann::json& result, const ReportOptions& report, SceneFacts& facts) {
+Baseline runBaseline(const nlohmann::json& result, const fs::path& folder, const ReportOptions& report,
+                     SceneFacts& facts) {
     Baseline baseline;
     try {
         checkAlgorithmName(report.baseline);
-        const OptimizeOptions options = optionsOf(result, report);
+        const OptimizeOptions options = optionsOf(result, folder, report);
         if (!(options.budgetMs > 0.0)) throw UsageError("result.json has no budget_ms");
         PreparedScene prepared = prepareScene(options);
         for (const scenes::Object& object : prepared.scene.objects) {
@@ -162,34 +179,44 @@ void addImages(ReportContext& context, const fs::path& folder, const nlohmann::j
     const std::string differencePath = (dir / (context.prefix + "difference.png")).string();
     renderer::writeColorImage(ssimPath, maps.ssimMap);
     renderer::writeColorImage(differencePath, maps.difference);
-    const int display = reference.width < kSmallImage ? kSmallImage : 0;
+    // Three renders fit side by side on the page; small ones are scaled up without smoothing.
+    const int display = reference.width < kSmallImage ? kSmallImage : std::min(reference.width, kLargeImage);
     std::vector<ReportImage> pictures = {
-        {referencePath.string(), "Reference: every object at its finest level", "", display},
-        {optimizedPath.string(), "Optimized (" + jsonText(result, "algorithm", "?") + "): fitness " +
-                                     fixed(jsonNumber(result, "fitness", NAN), 4) + ", " +
-                                     fixed(jsonNumber(result, "predicted_ms", NAN), 2) + " ms predicted",
-         "", display},
+        makeImage(referencePath.string(), "Reference: every object at its finest level", "", display),
+        makeImage(optimizedPath.string(), "Optimized (" + jsonText(result, "algorithm", "?") + "): fitness " +
+                                              fixed(jsonNumber(result, "fitness", NAN), 4) + ", " +
+                                              fixed(jsonNumber(result, "predicted_ms", NAN), 2) + " ms predicted",
+                  "", display),
     };
     if (baseline.image.width > 0) {
         const std::string baselinePath = (dir / (context.prefix + "baseline.png")).string();
         renderer::writeColorImage(baselinePath, baseline.image);
-        pictures.push_back({baselinePath, "Baseline (" + baselineName + ", same budget and time model): fitness " +
-                                              fixed(baseline.fitness, 4) + ", " + fixed(baseline.predictedMs, 2) +
-                                              " ms predicted",
-                            "", display});
+        pictures.push_back(makeImage(baselinePath,
+                                     "Baseline (" + baselineName + ", same budget and time model): fitness " +
+                                         fixed(baseline.fitness, 4) + ", " + fixed(baseline.predictedMs, 2) +
+                                         " ms predicted",
+                                     "", display));
     } else if (!baseline.note.empty()) {
-        pictures.push_back({"", "Baseline (" + baselineName + ")", baseline.note, 0});
+        pictures.push_back(makeImage("", "Baseline (" + baselineName + ")", baseline.note));
     }
+    ReportImage ssimImage = makeImage(ssimPath,
+                                      "SSIM map, optimized vs reference (mean " + fixed(maps.meanSsim, 4) +
+                                          "; the gray border has no full window)",
+                                      "", display);
+    ssimImage.legendGradient = magmaCss();
+    ssimImage.legendLow = fixed(maps.ssimLow, 2);
+    ssimImage.legendHigh = "1";
+    ReportImage differenceImage = makeImage(differencePath,
+                                            "Difference heat map: largest |optimized − reference| over R, G, B; " +
+                                                formatNumber(100.0 * maps.changedShare, 2) +
+                                                "% of pixels differ, at most " +
+                                                std::to_string(maps.largestDifference) + " levels",
+                                            "", display);
+    differenceImage.legendGradient = infernoCss();
+    differenceImage.legendLow = "0";
+    differenceImage.legendHigh = std::to_string(maps.differenceHigh);
     context.html.images(pictures);
-    context.html.images({
-        {ssimPath, "SSIM map, optimized vs reference (mean " + fixed(maps.meanSsim, 4) + ")", "", display},
-        {differencePath, "Difference heat map: largest |optimized − reference| over R, G, B; " +
-                             formatNumber(100.0 * maps.changedShare, 2) + "% of pixels differ, at most " +
-                             std::to_string(maps.largestDifference) + " levels",
-         "", display},
-    });
-    context.html.colorLegend("SSIM", magmaCss(), fixed(maps.ssimLow, 2), "1");
-    context.html.colorLegend("difference", infernoCss(), "0", std::to_string(maps.differenceHigh));
+    context.html.images({ssimImage, differenceImage});
 }
 
 void addLevels(ReportContext& context, const nlohmann::json& result, const SceneFacts& facts,
@@ -300,7 +327,7 @@ void addCurve(ReportContext& context, const fs::path& curvePath) {
     spec.title = "Fitness against evaluations";
     spec.data = {{spec.name + ".dat", data.str()}};
     std::ostringstream script;
-    script << "set xlabel 'evaluations (renders)'\nset ylabel 'fitness'\nset key bottom right\n";
+    script << "set xlabel 'evaluations (renders)'\nset ylabel 'fitness'\nset key below\n";
     if (predicted) script << "set y2label 'predicted ms of the best'\nset y2tics\nset ytics nomirror\n";
     script << "plot '" << spec.name << ".dat' using 1:2 with steps lw 2 lc rgb '" << seriesColor(0)
            << "' title 'best so far', '' using 1:3 with linespoints pt 7 ps 0.6 lc rgb '" << seriesColor(4)
@@ -326,7 +353,7 @@ void addOptimizeSection(ReportContext& context, const fs::path& folder) {
     Baseline baseline;
     const std::string baselineName = context.options.baseline;
     if (baselineName != "none") {
-        baseline = runBaseline(result, context.options, facts);
+        baseline = runBaseline(result, folder, context.options, facts);
         if (!baseline.note.empty()) std::cerr << "lodopt: report: " << baseline.note << "\n";
     }
     if (facts.names.empty()) facts = loadSceneFacts(result);

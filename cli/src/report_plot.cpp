@@ -110,9 +110,12 @@ PlotOutput Plotter::plot(const PlotSpec& spec) const {
            << "if (!exists(\"lodopt_output\")) lodopt_output = " << gnuplotString(imageName) << "\n"
            << "set output lodopt_output\n"
            << "set encoding utf8\n"
-           << "set title " << gnuplotString(spec.title) << "\n"
+           // Names from data (objects, algorithms) may hold '_' or '^': no enhanced-text markup
+           // in titles, keys and data tic labels (axis formats like 10^{%L} keep it).
+           << "set title " << gnuplotString(spec.title) << " noenhanced\n"
            << "set grid lc rgb '#d8d8d8'\n"
-           << "set key box opaque\n"
+           << "set key box opaque noenhanced\n"
+           << "set xtics noenhanced\n"
            << spec.script;
     if (!spec.script.empty() && spec.script.back() != '\n') script << "\n";
     script << "unset output\n";

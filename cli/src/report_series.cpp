@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 
 void ReportContext::plot(const PlotSpec& spec, const std::string& caption) const {
     const PlotOutput out = plotter.plot(spec);
-    html.images({{out.image, caption + (out.made ? " Script: " + fs::path(out.script).filename().string() : ""),
-                  out.note, 0}});
+    html.images({makeImage(out.image, caption + (out.made ? " Script: " + fs::path(out.script).filename().string() : ""),
+                           out.note)});
 }
 
 std::vector<std::vector<std::string>> flattenScalars(const nlohmann::json& document) {
@@ -72,7 +72,9 @@ void addCompareCurves(ReportContext& context, const fs::path& curvesPath) {
     data << "# per algorithm (one index block each): evaluations, median, min, max of the best fitness over seeds;\n"
             "# every x appears twice (before and after the step) so bands and lines are step functions\n";
     std::ostringstream script;
-    script << "set xlabel 'evaluations (renders)'\nset ylabel 'best fitness so far'\nset key bottom right\n";
+    // A little room above 1.0 so curves that reach the best known stay visible under the border.
+    script << "set xlabel 'evaluations (renders)'\nset ylabel 'best fitness so far'\nset key bottom right\n"
+           << "set offsets 0, 0, graph 0.04, graph 0.02\n";
     std::ostringstream plots;
     int block = 0;
     for (std::size_t a = 0; a < order.size(); ++a) {
@@ -151,10 +153,11 @@ void addCompareFinal(ReportContext& context, const nlohmann::json& document) {
 }  // namespace
 
 void addCompareSection(ReportContext& context, const fs::path& folder) {
-    context.html.heading(2, "compare: " + folder.string());
     nlohmann::json document;
-    if (fs::exists(folder / "compare.json")) {
-        document = readJsonFile((folder / "compare.json").string());
+    if (fs::exists(folder / "compare.json")) document = readJsonFile((folder / "compare.json").string());
+    context.html.heading(2, "compare: " + jsonText(document, "scene", "?") + " / " + jsonText(document, "view", "?"));
+    context.html.paragraph("From " + folder.string() + ".");
+    if (!document.is_null()) {
         context.html.paragraph(jsonText(document, "scene", "?") + " / " + jsonText(document, "view", "?") + ", budget " +
                                formatNumber(jsonNumber(document, "budget_ms", NAN)) + " ms, " +
                                jsonText(document, "evaluation_budget", "?") + " evaluations per run, " +
@@ -198,9 +201,10 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
     const double budget = jsonNumber(summary, "budget_ms", NAN);
 
     // Frame times along the path.
-    const std::vector<std::string> series = {"predicted_ms", "measured_ms", "baseline_measured_ms", "finest_predicted_ms"};
+    const std::vector<std::string> series = {"predicted_ms", "measured_ms", "baseline_measured_ms",
+                                             "exact_predicted_ms", "finest_predicted_ms"};
     const std::vector<std::string> labels = {"predicted (scheduled)", "measured (scheduled)", "measured (unscheduled)",
-                                             "predicted, every visible object finest"};
+                                             "predicted from exact features", "predicted, every visible object finest"};
     std::ostringstream data, plots;
     data << "# frame";
     std::vector<std::string> present;
@@ -220,15 +224,24 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
     times.data = {{times.name + ".dat", data.str()}};
     for (std::size_t p = 0; p < present.size(); ++p) {
         const std::size_t which = std::find(series.begin(), series.end(), present[p]) - series.begin();
+        const bool finest = present[p] == "finest_predicted_ms";
         plots << (p ? ", " : "") << "'" << times.name << ".dat' using 1:" << p + 2 << " with lines lw "
-              << (which == 3 ? "1 dt 3" : "1.6") << " lc rgb '" << (which == 3 ? "#7a7a7a" : seriesColor(int(which)))
+              << (finest ? "1 dt 3" : "1.6") << " lc rgb '" << (finest ? "#7a7a7a" : seriesColor(int(which)))
               << "' title '" << labels[which] << "'";
     }
     if (std::isfinite(budget)) plots << ", " << budget << " with lines dt 2 lw 2 lc rgb '#000000' title 'budget'";
-    times.script = "set xlabel 'frame'\nset ylabel 'milliseconds'\nset yrange [0:*]\nset key top right\nplot " +
+    // The all-finest prediction can be many times the budget: the axis follows the scheduled and
+    // measured times (and the budget) so the part that matters stays readable.
+    double top = std::isfinite(budget) ? budget : 0.0;
+    for (const std::string& name : present) {
+        if (name == "finest_predicted_ms") continue;
+        for (double v : frames.numbers(name)) top = std::isfinite(v) ? std::max(top, v) : top;
+    }
+    times.script = "set xlabel 'frame'\nset ylabel 'milliseconds'\nset yrange [0:" +
+                   (top > 0.0 ? formatNumber(top * 1.3, 4) : std::string("*")) + "]\nset key below\nplot " +
                    plots.str() + "\n";
-    context.plot(times, "Predicted and measured frame time per frame; measured columns appear when schedule ran with "
-                        "rendering.");
+    context.plot(times, "Predicted and measured frame time per frame (measured columns appear when schedule ran with "
+                        "--render); the all-finest prediction is cut off where it leaves the axis.");
 
     // Levels histogram over frames: objects at each level per frame, stacked.
     const std::vector<int> levels = levelColumns(frames);
@@ -355,8 +368,8 @@ void addTuneSection(ReportContext& context, const fs::path& file, const nlohmann
     spec.title = "Scheduler fitness as a fraction of the optimizer's, per view";
     spec.data = {{spec.name + ".dat", data.str()}};
     spec.script = "set style data histogram\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
-                  "set ylabel 'fraction of the optimizer fitness'\nset yrange [0:1.05]\nset xtics rotate by -35\n"
-                  "set key bottom right\nplot '" + spec.name + ".dat' using 2:xtic(1) lc rgb '" + seriesColor(1) +
+                  "set ylabel 'fraction of the optimizer fitness'\nset yrange [0:*]\nset xtics rotate by -35\n"
+                  "set key below\nplot '" + spec.name + ".dat' using 2:xtic(1) lc rgb '" + seriesColor(1) +
                   "' title 'published defaults', '' using 3 lc rgb '" + seriesColor(0) + "' title 'tuned'\n";
     context.plot(spec, "Per view: the scheduler's fitness divided by the optimizer's on the same view.");
     context.html.table({"view", "optimizer fitness", "default fraction", "tuned fraction", "tuned predicted ms"}, rows);

@@ -107,6 +107,12 @@ double silhouetteArea(const scenes::Bounds& box, const glm::mat4& transform, glm
 ObjectView observe(const ObjectShape& shape, const scenes::Camera& camera, const glm::mat4& viewProjection, int width,
                    int height) {
     assert(width > 0 && height > 0);
+    return observe(shape, camera, viewProjection,
+                   timemodel::projectedPixels(shape.box, viewProjection * shape.transform, width, height));
+}
+
+ObjectView observe(const ObjectShape& shape, const scenes::Camera& camera, const glm::mat4& viewProjection,
+                   double projectedPixels) {
     ObjectView view;
     const glm::vec3 viewDirection = glm::normalize(camera.target - camera.position);
     const glm::vec3 toObject = shape.center - camera.position;
@@ -118,7 +124,7 @@ ObjectView observe(const ObjectShape& shape, const scenes::Camera& camera, const
     // A flat or empty box has no area; a floor keeps 100 / s finite (such an object is
     // simply unimportant, as DONG15's formula makes a tiny crown).
     view.projectedArea = std::max(silhouetteArea(shape.box, shape.transform, ray), 1e-6);
-    view.projectedPixels = timemodel::projectedPixels(shape.box, viewProjection * shape.transform, width, height);
+    view.projectedPixels = projectedPixels;
     const glm::vec4 clip = viewProjection * glm::vec4(shape.center, 1.0f);
     if (clip.w > 0.0f) {
         view.centerOffset = std::hypot(double(clip.x / clip.w), double(clip.y / clip.w)) / std::sqrt(2.0);

@@ -113,12 +113,21 @@ struct SceneIndex::Canonical {
     static constexpr int kDirections = 14;
     std::array<glm::vec3, kDirections> directions{};
     std::vector<FrameFeatures> unseen;  // per (object, level)
-    // Per (object, level, direction): seen − unseen at the near size, its box area, and the
-    // exponent code per feature (0 → e = 0, 1 → ½, 2 → 1).
+    // Per (object, level, direction): seen − unseen at the near size and its box area.
     std::vector<FrameFeatures> seen;
     std::vector<double> nearArea;
+    // Per (object, level): the exponent code per feature (0 → e = 0, 1 → ½, 2 → 1).
     std::vector<std::array<std::uint8_t, kFeatureCount>> exponent;
+    // Each object alone in a scene (with the scene's materials), for the exact features of
+    // objects near the eye.
+    std::vector<scenes::Scene> singles;
 };
+
+namespace {
+// Closer than this many bounding radii, a box's screen rectangle says little about which part
+// of the object is in view (a terrain under the eye), so the object's features are exact.
+constexpr float kExactWithinRadii = 1.5f;
+}  // namespace
 
 SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode)
     : mScene(scene), mWidth(width), mHeight(height), mMode(mode) {
@@ -133,8 +142,13 @@ SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, Featur
         std::vector<double> triangles;
         for (std::size_t l = 0; l < object.levels.size(); ++l) {
             triangles.push_back(double(object.levels[l].stats.triangles));
-            const bool same = l > 0 && object.levels[l].stats.bounds.min == object.levels[l - 1].stats.bounds.min &&
-                              object.levels[l].stats.bounds.max == object.levels[l - 1].stats.bounds.max;
+            // Boxes within 2% of the object's size of the previous level's share its projection.
+            const scenes::Bounds& box = object.levels[l].stats.bounds;
+            const scenes::Bounds& previous = object.levels[l > 0 ? l - 1 : 0].stats.bounds;
+            const float tolerance = 0.02f * glm::length(previous.max - previous.min);
+            const bool same = l > 0 && !box.empty() && !previous.empty() &&
+                              glm::all(glm::lessThanEqual(glm::abs(box.min - previous.min), glm::vec3(tolerance))) &&
+                              glm::all(glm::lessThanEqual(glm::abs(box.max - previous.max), glm::vec3(tolerance)));
             mSameBoundsAsPrevious.push_back(same ? 1 : 0);
         }
         mRates.push_back(simplificationRates(triangles));
@@ -170,18 +184,22 @@ void SceneIndex::measureCanonical() {
     c.unseen.resize(levels);
     c.seen.resize(std::size_t(levels) * Canonical::kDirections);
     c.nearArea.resize(c.seen.size());
-    c.exponent.resize(c.seen.size());
+    c.exponent.resize(std::size_t(levels));
     // The sphere fills the smaller viewport dimension at the near size; a quarter of the
     // diameter (1/16 of the area) at the far size.
     const double aspect = double(mWidth) / double(mHeight);
     const double fovY = 40.0;
     const double halfAngle = std::atan(std::min(1.0, aspect) * std::tan(glm::radians(fovY / 2.0)));
     constexpr float kFarFactor = 4.0f;
-    // One object at a time, with the scene's materials and textures (features may read them).
-    scenes::Scene single;
-    single.materials = mScene.materials;
-    single.textures = mScene.textures;
+    // One object at a time, with the scene's materials and its textures' names and sizes (not
+    // their pixels, which would be copied once per object: the time model reads stats only).
+    std::vector<scenes::Texture> textureSizes;
+    for (const scenes::Texture& texture : mScene.textures) textureSizes.push_back({texture.name, texture.width, texture.height, {}});
+    c.singles.resize(std::size_t(objectCount()));
     for (int o = 0; o < objectCount(); ++o) {
+        scenes::Scene& single = c.singles[std::size_t(o)];
+        single.materials = mScene.materials;
+        single.textures = textureSizes;
         single.objects.assign(1, mScene.objects[o]);
         const ObjectShape& shape = mShapes[o];
         const float radius = std::max(shape.radius, 1e-4f);
@@ -200,34 +218,51 @@ void SceneIndex::measureCanonical() {
         const timemodel::FeatureTable unseen(single, away, mWidth, mHeight);
         const int count = levelCount(o);
         for (int l = 0; l < count; ++l) c.unseen[mFirstLevel[o] + l] = unseen.contribution(0, l);
+        // Exponents from the six axis directions together (a far table per direction would
+        // double the set-up time for little: the power a feature scales with is a property of
+        // the feature, not of the direction).
+        std::vector<FrameFeatures> nearSum(static_cast<std::size_t>(count)), farSum(static_cast<std::size_t>(count));
+        std::vector<double> nearAreaSum(static_cast<std::size_t>(count), 0.0), farAreaSum(static_cast<std::size_t>(count), 0.0);
         for (int k = 0; k < Canonical::kDirections; ++k) {
             const scenes::Camera nearCamera = cameraAt(c.directions[k], nearDistance);
-            const scenes::Camera farCamera = cameraAt(c.directions[k], nearDistance * kFarFactor);
             const timemodel::FeatureTable nearTable(single, nearCamera, mWidth, mHeight);
-            const timemodel::FeatureTable farTable(single, farCamera, mWidth, mHeight);
             const glm::mat4 nearVp = scenes::projectionMatrix(nearCamera, float(aspect)) * scenes::viewMatrix(nearCamera);
-            const glm::mat4 farVp = scenes::projectionMatrix(farCamera, float(aspect)) * scenes::viewMatrix(farCamera);
+            const bool axis = k < 6;
+            std::unique_ptr<timemodel::FeatureTable> farTable;
+            glm::mat4 farVp(1.0f);
+            if (axis) {
+                const scenes::Camera farCamera = cameraAt(c.directions[k], nearDistance * kFarFactor);
+                farTable = std::make_unique<timemodel::FeatureTable>(single, farCamera, mWidth, mHeight);
+                farVp = scenes::projectionMatrix(farCamera, float(aspect)) * scenes::viewMatrix(farCamera);
+            }
             for (int l = 0; l < count; ++l) {
                 const int index = mFirstLevel[o] + l;
                 const std::size_t slot = std::size_t(index) * Canonical::kDirections + k;
                 const scenes::Bounds& box = mScene.objects[o].levels[l].stats.bounds;
                 const double nearArea = projectBox(box, nearVp * shape.transform, mWidth, mHeight).area;
-                const double farArea = projectBox(box, farVp * shape.transform, mWidth, mHeight).area;
-                const FrameFeatures w = nearTable.contribution(0, l) - c.unseen[index];
-                const FrameFeatures wFar = farTable.contribution(0, l) - c.unseen[index];
-                c.seen[slot] = w;
+                c.seen[slot] = nearTable.contribution(0, l) - c.unseen[index];
                 c.nearArea[slot] = nearArea;
-                for (std::size_t f = 0; f < kFeatureCount; ++f) {
-                    std::uint8_t code = 0;
-                    const double a = w.values[f], b = wFar.values[f];
-                    if (a > 0.0 && nearArea > 0.0 && farArea > 0.0 && nearArea > farArea) {
-                        // Power of the change with the box area between the two sizes, rounded
-                        // to 0, ½ or 1; a feature that vanishes at the far size scales fully.
-                        const double e = b > 0.0 ? std::log(a / b) / std::log(nearArea / farArea) : 1.0;
-                        code = e < 0.25 ? 0 : (e < 0.75 ? 1 : 2);
-                    }
-                    c.exponent[slot][f] = code;
+                if (axis) {
+                    nearSum[l] += c.seen[slot];
+                    farSum[l] += farTable->contribution(0, l) - c.unseen[index];
+                    nearAreaSum[l] += nearArea;
+                    farAreaSum[l] += projectBox(box, farVp * shape.transform, mWidth, mHeight).area;
                 }
+            }
+        }
+        for (int l = 0; l < count; ++l) {
+            auto& exponent = c.exponent[std::size_t(mFirstLevel[o] + l)];
+            const double nearArea = nearAreaSum[l], farArea = farAreaSum[l];
+            for (std::size_t f = 0; f < kFeatureCount; ++f) {
+                std::uint8_t code = 0;
+                const double a = nearSum[l].values[f], b = farSum[l].values[f];
+                if (a > 0.0 && nearArea > 0.0 && farArea > 0.0 && nearArea > farArea) {
+                    // Power of the change with the box area between the two sizes, rounded to
+                    // 0, ½ or 1; a feature that vanishes at the far size scales fully.
+                    const double e = b > 0.0 ? std::log(a / b) / std::log(nearArea / farArea) : 1.0;
+                    code = e < 0.25 ? 0 : (e < 0.75 ? 1 : 2);
+                }
+                exponent[f] = code;
             }
         }
     }
@@ -249,7 +284,10 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
     const ObjectShape& shape = mShapes[object];
     if (shape.radius <= 0.0f || !out.frustum.intersectsSphere(shape.center, shape.radius)) return false;
     out.visible[object] = 1;
-    out.views[object] = scheduler::observe(shape, out.camera, out.viewProjection, mWidth, mHeight);
+    const glm::mat4 mvp = out.viewProjection * shape.transform;
+    const scenes::Object& sceneObject = mScene.objects[object];
+    ProjectedBox box = projectBox(sceneObject.levels[0].stats.bounds, mvp, mWidth, mHeight);
+    out.views[object] = scheduler::observe(shape, out.camera, out.viewProjection, box.visibleArea);
     const int first = mFirstLevel[object];
     const int count = levelCount(object);
     if (mMode == FeatureMode::Exact) {
@@ -257,9 +295,14 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
         return true;
     }
     const Canonical& c = *mCanonical;
-    // The canonical direction nearest to the eye as seen from the object.
     glm::vec3 toEye = out.camera.position - shape.center;
     const float length = glm::length(toEye);
+    if (length < kExactWithinRadii * shape.radius) {
+        const timemodel::FeatureTable table(c.singles[std::size_t(object)], out.camera, mWidth, mHeight);
+        for (int l = 0; l < count; ++l) out.contributions[first + l] = table.contribution(0, l);
+        return true;
+    }
+    // The canonical direction nearest to the eye as seen from the object.
     toEye = length > 0.0f ? toEye / length : glm::vec3(0.0f, 0.0f, 1.0f);
     int best = 0;
     float bestDot = -2.0f;
@@ -270,12 +313,11 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
             best = k;
         }
     }
-    const glm::mat4 mvp = out.viewProjection * shape.transform;
-    const scenes::Object& sceneObject = mScene.objects[object];
-    ProjectedBox box;
     for (int l = 0; l < count; ++l) {
         const int index = first + l;
-        if (!mSameBoundsAsPrevious[index]) box = projectBox(sceneObject.levels[l].stats.bounds, mvp, mWidth, mHeight);
+        if (l > 0 && !mSameBoundsAsPrevious[index]) {
+            box = projectBox(sceneObject.levels[l].stats.bounds, mvp, mWidth, mHeight);
+        }
         FrameFeatures& f = out.contributions[index];
         f = c.unseen[index];
         const std::size_t slot = std::size_t(index) * Canonical::kDirections + best;
@@ -284,7 +326,7 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
         const double ratio = box.area / c.nearArea[slot];
         const double scale[3] = {share, share * std::sqrt(ratio), share * ratio};
         const FrameFeatures& w = c.seen[slot];
-        const auto& exponent = c.exponent[slot];
+        const auto& exponent = c.exponent[std::size_t(index)];
         for (std::size_t k = 0; k < kFeatureCount; ++k) f.values[k] += w.values[k] * scale[exponent[k]];
     }
     return true;

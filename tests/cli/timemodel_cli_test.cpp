@@ -1,16 +1,15 @@
 // lodopt calibrate / estimate: a tiny real calibration (seconds), predictions from its
 // profile and from the shipped one, and bad input mapped to exit code 2.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "timemodel/profile.hpp"
 
@@ -41,9 +40,10 @@ protected:
         std::filesystem::remove_all(sDir);
         std::filesystem::create_directories(sDir);
         sProfile = (sDir / "device.json").string();
-        sCalibration = run("calibrate --scene harbor --samples 24 --jitter 1 --rounds 1 --repeats 1 --warmup 1 "
-                           "--size 96x72 --seed 3 --out " +
-                           sProfile + " --json");
+        sCalibration =
+            run("calibrate --scene harbor --samples 24 --jitter 1 --rounds 1 --max-rounds 1 --repeats 1 "
+                "--warmup 1 --size 96x72 --seed 3 --out " +
+                sProfile + " --json");
     }
     static void TearDownTestSuite() { std::filesystem::remove_all(sDir); }
 

@@ -1,10 +1,11 @@
 // Calibration plans (deterministic, viewpoints held out whole) and the side-by-side fit.
+#include "timemodel/calibration.hpp"
+
 #include <gtest/gtest.h>
 
 #include <set>
 
 #include "scenes/builtin.hpp"
-#include "timemodel/calibration.hpp"
 #include "timemodel/features.hpp"
 
 using namespace lodopt;
@@ -91,7 +92,8 @@ TEST(CalibrationPlan, SampleSpreadCoversCoarseAndFineFrames) {
     const timemodel::CalibrationPlan plan = timemodel::planCalibration(scene, options);
     double least = 1e30, most = 0.0;
     for (const timemodel::PlannedSample& s : plan.samples) {
-        const auto f = timemodel::computeFrameFeatures(scene, s.combination, plan.viewpoints[s.viewpoint].camera, 64, 64);
+        const auto f =
+            timemodel::computeFrameFeatures(scene, s.combination, plan.viewpoints[s.viewpoint].camera, 64, 64);
         least = std::min(least, f[timemodel::Feature::kTriangles]);
         most = std::max(most, f[timemodel::Feature::kTriangles]);
     }

@@ -1,12 +1,12 @@
 // Frame features: projected box areas worked out by hand, and the table's O(1) deltas.
+#include "timemodel/features.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scenes/mesh_builder.hpp"
-#include "timemodel/features.hpp"
 
 using namespace lodopt;
 using timemodel::Feature;
@@ -73,16 +73,16 @@ scenes::Scene threeObjectScene() {
 
 TEST(ProjectedPixels, FlatSquareCoversAQuarterOfTheViewport) {
     // x, y in [-1, 1] at distance 2 → NDC [-0.5, 0.5]² → half the width, half the height.
-    const double pixels = timemodel::projectedPixels(box({-1, -1, -2}, {1, 1, -2}), viewProjection(straightCamera()),
-                                                     200, 200);
+    const double pixels =
+        timemodel::projectedPixels(box({-1, -1, -2}, {1, 1, -2}), viewProjection(straightCamera()), 200, 200);
     EXPECT_NEAR(pixels, 100.0 * 100.0, 1.0);
 }
 
 TEST(ProjectedPixels, BoxPartlyOutsideIsClippedToTheViewport) {
     // x in [0, 4] at distance 2 → NDC [0, 2] → clipped to [0, 1]: half the width (100 of 200);
     // y in [-1, 1] → NDC [-0.5, 0.5]: half the height (50 of 100).
-    const double pixels = timemodel::projectedPixels(box({0, -1, -2}, {4, 1, -2}), viewProjection(straightCamera()),
-                                                     200, 100);
+    const double pixels =
+        timemodel::projectedPixels(box({0, -1, -2}, {4, 1, -2}), viewProjection(straightCamera()), 200, 100);
     EXPECT_NEAR(pixels, 100.0 * 50.0, 1.0);
 }
 
@@ -175,8 +175,8 @@ TEST(RasterFeatures, OneTriangleByHand) {
 
 TEST(RasterFeatures, TrianglesOutsideTheFrustumAreNotVisible) {
     scenes::Mesh mesh;
-    mesh.positions = {{0, 0, 2}, {1, 0, 2}, {0, 1, 2},          // behind the camera
-                      {10, 0, -2}, {11, 0, -2}, {10, 1, -2},    // far right of the view
+    mesh.positions = {{0, 0, 2},    {1, 0, 2},   {0, 1, 2},    // behind the camera
+                      {10, 0, -2},  {11, 0, -2}, {10, 1, -2},  // far right of the view
                       {-1, -1, -3}, {1, -1, -3}, {0, 1, -3}};  // in front: counted
     mesh.normals.assign(mesh.positions.size(), glm::vec3(0, 0, 1));
     mesh.indices = {0, 1, 2, 3, 4, 5, 6, 7, 8};

@@ -261,7 +261,7 @@ TEST(Feedback, HeavyOutliersStayBounded) {
     timemodel::LinearModel model;
     model.setCoefficients(linearCoefficients(1.0, 1e-5));
     timemodel::FrameFeatures frame;
-    frame[Feature::kVertices] = 1e5;  // estimate 2 ms
+    frame[Feature::kVertices] = 1e5;                 // estimate 2 ms
     const timemodel::FeedbackParameters parameters;  // beta 0.3, clamp ±1, drift 4
     // One absurd frame (1000x slower) moves the estimate by at most 1 + beta.
     const timemodel::FeedbackResult spike = model.applyFeedback(frame, 2000.0, parameters);
@@ -279,7 +279,8 @@ TEST(Feedback, HeavyOutliersStayBounded) {
     }
     // Unusable measurements are ignored.
     const double before = model.feedbackScale();
-    for (double bad : {0.0, -3.0, std::nan(""), double(INFINITY)}) EXPECT_FALSE(model.applyFeedback(frame, bad).applied);
+    for (double bad : {0.0, -3.0, std::nan(""), double(INFINITY)})
+        EXPECT_FALSE(model.applyFeedback(frame, bad).applied);
     EXPECT_EQ(model.feedbackScale(), before);
     // A refit or new coefficients reset the feedback.
     model.setCoefficients(model.calibratedCoefficients());
@@ -296,7 +297,8 @@ TEST(Feedback, ConvergesToASteadyBias) {
 }
 
 TEST(ErrorStats, QuantilesInterpolateBetweenOrderStatistics) {
-    const timemodel::ErrorStats stats = timemodel::summarizeErrors({0.5, 0.1, 0.4, 0.2, 0.3, 0.0, 0.9, 0.8, 0.7, 0.6, 1.0});
+    const timemodel::ErrorStats stats =
+        timemodel::summarizeErrors({0.5, 0.1, 0.4, 0.2, 0.3, 0.0, 0.9, 0.8, 0.7, 0.6, 1.0});
     EXPECT_EQ(stats.count, 11u);
     EXPECT_NEAR(stats.mean, 0.5, 1e-12);
     EXPECT_NEAR(stats.median, 0.5, 1e-12);

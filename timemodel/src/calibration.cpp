@@ -5,9 +5,8 @@
 #include <cassert>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
-
 #include <glm/gtc/constants.hpp>
+#include <sstream>
 
 namespace lodopt::timemodel {
 
@@ -18,7 +17,9 @@ std::uint64_t SplitMix64::next() {
     return z ^ (z >> 31);
 }
 
-double SplitMix64::uniform() { return double(next() >> 11) * 0x1.0p-53; }
+double SplitMix64::uniform() {
+    return double(next() >> 11) * 0x1.0p-53;
+}
 
 int SplitMix64::below(int n) {
     assert(n > 0);
@@ -60,9 +61,10 @@ scenes::Combination sampleCombination(const scenes::Scene& scene, const Calibrat
         }
         return combination;
     }
-    // Skewed: a preferred relative level and a drawn fraction for the whole frame.
+    // Skewed: a preferred relative level and a drawn fraction for the whole frame; often
+    // every object is drawn, so that full, fine frames (the reference) are inside the data.
     const double preferred = rng.uniform();
-    const double drawn = rng.between(0.3, 1.0);
+    const double drawn = rng.uniform() < 0.4 ? 1.0 : rng.between(0.3, 1.0);
     for (std::size_t o = 0; o < combination.size(); ++o) {
         const int levels = static_cast<int>(scene.objects[o].levels.size());
         if (rng.uniform() >= drawn) {

@@ -12,7 +12,9 @@ DongModel::DongModel(double minimumSine) : mMinimumSine(minimumSine) {
     assert(minimumSine >= 0.0 && minimumSine < 1.0);
 }
 
-std::vector<std::string> DongModel::coefficientNames() const { return {"triangles", "texture_bytes"}; }
+std::vector<std::string> DongModel::coefficientNames() const {
+    return {"triangles", "texture_bytes"};
+}
 
 double DongModel::estimateCalibratedMs(const FrameFeatures& features) const {
     return mCoefficients[0] * features[Feature::kTriangles] + mCoefficients[1] * features[Feature::kTextureBytes];
@@ -40,8 +42,8 @@ FitReport DongModel::fitValidated(const std::vector<Sample>& samples) {
             const double pj = samples[j].features[Feature::kTriangles];
             const double tj = samples[j].features[Feature::kTextureBytes];
             const double Tj = samples[j].measuredMs;
-            const double scaledNorms = std::hypot(pi / meanPolygons, ti / meanTexture) *
-                                       std::hypot(pj / meanPolygons, tj / meanTexture);
+            const double scaledNorms =
+                std::hypot(pi / meanPolygons, ti / meanTexture) * std::hypot(pj / meanPolygons, tj / meanTexture);
             const double scaledDeterminant = (pi * tj - pj * ti) / (meanPolygons * meanTexture);
             if (!(scaledNorms > 0.0) || std::abs(scaledDeterminant) <= mMinimumSine * scaledNorms) {
                 ++report.skippedPairs;

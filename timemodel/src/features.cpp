@@ -2,38 +2,50 @@
 // projected bounding-box area that CITY17 uses for "#pixels", and the per-view table.
 #include "timemodel/features.hpp"
 
-#include "occlusion.hpp"
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
 
+#include "occlusion.hpp"
+
 namespace lodopt::timemodel {
 
 const char* featureName(Feature feature) {
     switch (feature) {
-        case Feature::kVertices: return "vertices";
-        case Feature::kTriangles: return "triangles";
-        case Feature::kTextureBytes: return "texture_bytes";
-        case Feature::kDrawCalls: return "draw_calls";
-        case Feature::kPixels: return "pixels";
-        case Feature::kDrawnObjects: return "drawn_objects";
-        case Feature::kMatrices: return "matrices";
-        case Feature::kBoundingBoxes: return "bounding_boxes";
-        case Feature::kVisibleTriangles: return "visible_triangles";
-        case Feature::kRasterPixels: return "raster_pixels";
-        case Feature::kEdgePixels: return "edge_pixels";
-        case Feature::kShadedPixels: return "shaded_pixels";
+        case Feature::kVertices:
+            return "vertices";
+        case Feature::kTriangles:
+            return "triangles";
+        case Feature::kTextureBytes:
+            return "texture_bytes";
+        case Feature::kDrawCalls:
+            return "draw_calls";
+        case Feature::kPixels:
+            return "pixels";
+        case Feature::kDrawnObjects:
+            return "drawn_objects";
+        case Feature::kMatrices:
+            return "matrices";
+        case Feature::kBoundingBoxes:
+            return "bounding_boxes";
+        case Feature::kVisibleTriangles:
+            return "visible_triangles";
+        case Feature::kRasterPixels:
+            return "raster_pixels";
+        case Feature::kEdgePixels:
+            return "edge_pixels";
+        case Feature::kShadedPixels:
+            return "shaded_pixels";
     }
     return "unknown";
 }
 
 const std::array<Feature, kFeatureCount>& allFeatures() {
     static const std::array<Feature, kFeatureCount> features = {
-        Feature::kVertices,      Feature::kTriangles,        Feature::kTextureBytes, Feature::kDrawCalls,
-        Feature::kPixels,        Feature::kDrawnObjects,     Feature::kMatrices,     Feature::kBoundingBoxes,
-        Feature::kVisibleTriangles, Feature::kRasterPixels, Feature::kEdgePixels, Feature::kShadedPixels};
+        Feature::kVertices,         Feature::kTriangles,    Feature::kTextureBytes, Feature::kDrawCalls,
+        Feature::kPixels,           Feature::kDrawnObjects, Feature::kMatrices,     Feature::kBoundingBoxes,
+        Feature::kVisibleTriangles, Feature::kRasterPixels, Feature::kEdgePixels,   Feature::kShadedPixels};
     return features;
 }
 
@@ -47,22 +59,32 @@ FrameFeatures& FrameFeatures::operator-=(const FrameFeatures& other) {
     return *this;
 }
 
-FrameFeatures operator+(FrameFeatures a, const FrameFeatures& b) { return a += b; }
-FrameFeatures operator-(FrameFeatures a, const FrameFeatures& b) { return a -= b; }
+FrameFeatures operator+(FrameFeatures a, const FrameFeatures& b) {
+    return a += b;
+}
+FrameFeatures operator-(FrameFeatures a, const FrameFeatures& b) {
+    return a -= b;
+}
 
 namespace {
 
 // Signed distances to the near (z >= -w) and far (z <= w) planes in clip space.
-float nearDistance(const glm::vec4& p) { return p.z + p.w; }
-float farDistance(const glm::vec4& p) { return p.w - p.z; }
+float nearDistance(const glm::vec4& p) {
+    return p.z + p.w;
+}
+float farDistance(const glm::vec4& p) {
+    return p.w - p.z;
+}
 
 // Clips segment [a, b] to one plane given by `distance` (inside >= 0); false when nothing is left.
 template <typename Distance>
 bool clipSegment(glm::vec4& a, glm::vec4& b, Distance distance) {
     const float da = distance(a), db = distance(b);
     if (da < 0.0f && db < 0.0f) return false;
-    if (da < 0.0f) a = a + (b - a) * (da / (da - db));
-    else if (db < 0.0f) b = b + (a - b) * (db / (db - da));
+    if (da < 0.0f)
+        a = a + (b - a) * (da / (da - db));
+    else if (db < 0.0f)
+        b = b + (a - b) * (db / (db - da));
     return true;
 }
 
@@ -110,8 +132,8 @@ double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& mode
 
 namespace {
 
-FrameFeatures levelContribution(const scenes::Level& level,
-                                const glm::mat4& modelViewProjection, int width, int height, double depthPassShare) {
+FrameFeatures levelContribution(const scenes::Level& level, const glm::mat4& modelViewProjection, int width, int height,
+                                double depthPassShare) {
     const scenes::LevelStats& stats = level.stats;
     FrameFeatures f;
     f[Feature::kVertices] = double(stats.vertices);
@@ -139,8 +161,7 @@ FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& cam
     assert(width > 0 && height > 0);
     const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
     mFirstLevel.reserve(scene.objects.size() + 1);
-    const std::vector<double> shares =
-        detail::depthPassShares(scene, viewProjection, float(width) / float(height));
+    const std::vector<double> shares = detail::depthPassShares(scene, viewProjection, float(width) / float(height));
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const scenes::Object& object = scene.objects[o];
         mFirstLevel.push_back(static_cast<int>(mContributions.size()));
@@ -191,14 +212,12 @@ FrameFeatures computeFrameFeatures(const scenes::Scene& scene, const scenes::Com
     const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
     FrameFeatures out;
     out[Feature::kBoundingBoxes] = double(scene.objects.size());
-    const std::vector<double> shares =
-        detail::depthPassShares(scene, viewProjection, float(width) / float(height));
+    const std::vector<double> shares = detail::depthPassShares(scene, viewProjection, float(width) / float(height));
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const int level = combination[o];
         if (level == scenes::kNotDrawn) continue;
         const scenes::Object& object = scene.objects[o];
-        out += levelContribution(object.levels[level], viewProjection * object.transform, width, height,
-                                 shares[o]);
+        out += levelContribution(object.levels[level], viewProjection * object.transform, width, height, shares[o]);
     }
     return out;
 }

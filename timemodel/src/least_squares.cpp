@@ -275,9 +275,12 @@ ColumnCheck checkColumns(const Matrix& a, const std::vector<std::size_t>& order,
                 if (distanceToSpan(unit[c], pair) < dependencyTolerance) partner = names[k];
             }
             std::string note = "dropped '" + names[c] + "': ";
-            if (constant) note += "constant over the samples (absorbed by '" + names[interceptColumn] + "')";
-            else if (!partner.empty()) note += "a copy of '" + partner + "' (up to scale and offset) over the samples";
-            else note += "a linear combination of " + joinNames(before) + " over the samples";
+            if (constant)
+                note += "constant over the samples (absorbed by '" + names[interceptColumn] + "')";
+            else if (!partner.empty())
+                note += "a copy of '" + partner + "' (up to scale and offset) over the samples";
+            else
+                note += "a linear combination of " + joinNames(before) + " over the samples";
             check.notes.push_back(note);
             continue;
         }

@@ -20,8 +20,8 @@ struct ScreenVertex {
 
 // Rasterizes one screen-space triangle with pixel-centre sampling and a LESS depth test;
 // counts the covered and the passing cells.
-void rasterize(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, Grid& grid,
-               std::uint64_t& covered, std::uint64_t& passed) {
+void rasterize(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, Grid& grid, std::uint64_t& covered,
+               std::uint64_t& passed) {
     const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     if (area == 0.0 || !std::isfinite(area)) return;
     const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, c.x}))));
@@ -87,7 +87,8 @@ std::vector<double> depthPassShares(const scenes::Scene& scene, const glm::mat4&
                     screen[k] = {(polygon[k].x / w * 0.5 + 0.5) * grid.width,
                                  (polygon[k].y / w * 0.5 + 0.5) * grid.height, polygon[k].z / w};
                 }
-                for (int k = 1; k + 1 < count; ++k) rasterize(screen[0], screen[k], screen[k + 1], grid, covered, passed);
+                for (int k = 1; k + 1 < count; ++k)
+                    rasterize(screen[0], screen[k], screen[k + 1], grid, covered, passed);
             }
         }
         if (covered > 0) shares[o] = double(passed) / double(covered);

@@ -5,9 +5,8 @@
 // this share turns an object's rasterized area into an estimate of its shaded area.
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "scenes/scene.hpp"
 

@@ -4,10 +4,9 @@
 #include <chrono>
 #include <ctime>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
-
-#include <nlohmann/json.hpp>
 
 #include "scenes/atomic_file.hpp"
 #include "scenes/builtin.hpp"
@@ -78,7 +77,9 @@ private:
 
 }  // namespace
 
-std::vector<std::string> timingClockNames() { return {"wall-min", "wall-median", "cpu"}; }
+std::vector<std::string> timingClockNames() {
+    return {"wall-min", "wall-median", "cpu"};
+}
 
 MachineDescription describeMachine() {
     MachineDescription machine;

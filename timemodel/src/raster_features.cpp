@@ -98,8 +98,8 @@ RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm
             const std::uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
             if (codes[a] & codes[b] & codes[c]) continue;  // trivially outside one plane
             result.visibleTriangles += 1.0;
-            result.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height,
-                                                        result.edgePixels);
+            result.rasterPixels +=
+                triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height, result.edgePixels);
         }
     }
     return result;

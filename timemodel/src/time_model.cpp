@@ -87,15 +87,17 @@ FeedbackResult TimeModel::applyFeedback(const FrameFeatures& features, double ac
     result.relativeError = (actualMs - estimate) / estimate;
     const double clamped = std::clamp(result.relativeError, -parameters.maxRelativeError, parameters.maxRelativeError);
     // Every coefficient gets the same factor, so the prediction scales by it too.
-    const double scale = std::clamp(mFeedbackScale * (1.0 + parameters.beta * clamped), 1.0 / parameters.maxDrift,
-                                    parameters.maxDrift);
+    const double scale =
+        std::clamp(mFeedbackScale * (1.0 + parameters.beta * clamped), 1.0 / parameters.maxDrift, parameters.maxDrift);
     result.factor = scale / mFeedbackScale;
     result.applied = true;
     mFeedbackScale = scale;
     return result;
 }
 
-std::vector<std::string> timeModelNames() { return {"linear", "dong", "wimmer"}; }
+std::vector<std::string> timeModelNames() {
+    return {"linear", "dong", "wimmer"};
+}
 
 std::unique_ptr<TimeModel> makeTimeModel(const std::string& name) {
     if (name == "linear") return std::make_unique<LinearModel>();

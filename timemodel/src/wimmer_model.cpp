@@ -45,8 +45,7 @@ double WimmerModel::gpuMs(const FrameFeatures& f) const {
 }
 
 double WimmerModel::cpuMs(const FrameFeatures& f) const {
-    return mCoefficients[kCpuMatrices] * f[Feature::kMatrices] +
-           mCoefficients[kCpuBoxes] * f[Feature::kBoundingBoxes] +
+    return mCoefficients[kCpuMatrices] * f[Feature::kMatrices] + mCoefficients[kCpuBoxes] * f[Feature::kBoundingBoxes] +
            mCoefficients[kCpuDrawCalls] * f[Feature::kDrawCalls];
 }
 

@@ -98,6 +98,10 @@ double silhouetteArea(const scenes::Bounds& box, const glm::mat4& transform, glm
 // camera at `width` x `height` pixels (both > 0).
 ObjectView observe(const ObjectShape& shape, const scenes::Camera& camera, const glm::mat4& viewProjection, int width,
                    int height);
+// The same with p already known (`projectedPixels` >= 0, e.g. from the scheduler's own box
+// projection), so the box is projected once per frame.
+ObjectView observe(const ObjectShape& shape, const scenes::Camera& camera, const glm::mat4& viewProjection,
+                   double projectedPixels);
 
 // DONG15 eq. 4: level k when t_k <= x < t_{k+1} (t_0 = 0), clamped to the coarsest level.
 // `thresholds` ascending, > 0 (validated by validateThresholds); `levelCount` >= 1.

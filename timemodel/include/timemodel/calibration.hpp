@@ -7,8 +7,9 @@
 //               jitter, every fourth named view); no held-out viewpoint is ever fitted;
 //   samples     round-robin over viewpoints; half draw every object's level uniformly with
 //               some objects not drawn (probability notDrawnProbability), half are skewed
-//               (a per-sample preferred level and drawn fraction) so that scenes with many
-//               objects still spread from coarse to fine frames instead of averaging out.
+//               (a per-sample preferred level and drawn fraction, all objects drawn in 40% of
+//               them) so that scenes with many objects still spread from coarse to fine frames,
+//               the reference included, instead of averaging out.
 // Everything is drawn from SplitMix64 with the given seed (std distributions are not portable),
 // so a plan is the same on every platform.
 #pragma once

@@ -29,10 +29,9 @@
 
 #include <array>
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "scenes/scene.hpp"
 
@@ -78,8 +77,7 @@ FrameFeatures operator-(FrameFeatures a, const FrameFeatures& b);
 // points projected, and their bounding rectangle clipped to the viewport. 0 when the box is
 // empty, behind the camera or outside the view.
 // `width`, `height` > 0: viewport size in pixels.
-double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& modelViewProjection, int width,
-                       int height);
+double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& modelViewProjection, int width, int height);
 
 // Visible triangles, raster pixels and edge pixels (see the file comment) of `meshes` seen
 // through `modelViewProjection` at `width` x `height` pixels; O(vertices + triangles).

@@ -44,12 +44,12 @@ std::vector<std::string> timingClockNames();
 
 struct TimingSettings {
     std::string clock = kDefaultTimingClock;
-    int rounds = 0;            // interleaved passes over all samples
-    int repeatsPerRound = 0;   // timed draws per sample per pass (median taken)
-    int warmup = 0;            // untimed draws before each timed batch
-    double medianSpread = 0.0; // median over samples of (max − min) / median across passes
+    int rounds = 0;             // interleaved passes over all samples
+    int repeatsPerRound = 0;    // timed draws per sample per pass (median taken)
+    int warmup = 0;             // untimed draws before each timed batch
+    double medianSpread = 0.0;  // median over samples of (max − min) / median across passes
     double p90Spread = 0.0;
-    double seconds = 0.0;      // wall time of the whole calibration
+    double seconds = 0.0;  // wall time of the whole calibration
 };
 
 struct ProfileSample {
