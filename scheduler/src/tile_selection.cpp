@@ -78,7 +78,8 @@ void FrameScheduler::decideTiles() {
             const double stayLoss = pixels * (rates[level] - rates[level - 1]);
             double dropLoss = 0.0;
             int k = end;
-            while (k > i + 1 && raised > budget) {
+            // Dropping more than the stop would lose is never chosen: stop scanning there.
+            while (k > i + 1 && raised > budget && dropLoss < stayLoss) {
                 --k;
                 w.trial -= contribution(w.order[k], d.levels[w.order[k]]);
                 dropLoss += mFrame.views[w.order[k]].projectedPixels;

@@ -9,7 +9,7 @@
 //           c5·draw_calls. Fitted by alternating regime assignment (each sample CPU- or
 //           GPU-bound under the current fit) and non-negative least squares, from several
 //           starting assignments; the best max-model fit wins.
-//   linear  (default) T = c0 + Σ c_k·feature_k over every feature (features.hpp), NNLS
+//   linear  (default) T = c0 + Σ c_k·feature_k over every feature (features.hpp), non-negative least
 //           squares. Constant, zero or collinear features are dropped with a note and the
 //           kept set's condition number is bounded, so the fit never blows up silently.
 // linear and wimmer minimise the squared *relative* error Σ((t_est − t_act)/t_act)², the
