@@ -39,6 +39,13 @@ bool keepEncodedImage(tinygltf::Image* image, const int index, std::string*, std
     return true;
 }
 
+// tinygltf's own FileExists fopen()s the file, which blocks forever on a FIFO: a uri naming
+// anything but a regular file (a FIFO, a device, a folder) counts as missing.
+bool regularFileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return fs::is_regular_file(path, ec);
+}
+
 // Reads an external file (a .bin or image next to the .gltf) unless it is over the limit or
 // not a regular file: a uri naming /dev/zero, a FIFO or a folder would read forever or block.
 bool readCappedFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
@@ -194,7 +201,7 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
     parser.SetImageLoader(&keepEncodedImage, &deferred);
     parser.SetStoreOriginalJSONForExtrasAndExtensions(true);
     std::uint64_t limit = options.maxBytes;
-    parser.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readCappedFile, &tinygltf::WriteWholeFile,
+    parser.SetFsCallbacks({&regularFileExists, &tinygltf::ExpandFilePath, &readCappedFile, &tinygltf::WriteWholeFile,
                            &limit});
     tinygltf::Model model;
     std::string error, warning;

@@ -118,15 +118,41 @@ struct SceneIndex::Canonical {
     std::vector<double> nearArea;
     // Per (object, level): the exponent code per feature (0 → e = 0, 1 → ½, 2 → 1).
     std::vector<std::array<std::uint8_t, kFeatureCount>> exponent;
-    // Each object alone in a scene (with the scene's materials), for the exact features of
-    // objects near the eye.
-    std::vector<scenes::Scene> singles;
+    // Per object: the object alone in a scene with at most kProxyTriangles triangles per level
+    // (an even sample of its triangles), for objects near the eye; per (object, level) the
+    // proxy's unseen features and the factor per feature from the proxy to the object.
+    std::vector<scenes::Scene> proxies;
+    std::vector<FrameFeatures> proxyUnseen;
+    std::vector<FrameFeatures> proxyScale;
 };
 
 namespace {
+
 // Closer than this many bounding radii, a box's screen rectangle says little about which part
-// of the object is in view (a terrain under the eye), so the object's features are exact.
-constexpr float kExactWithinRadii = 1.5f;
+// of the object is in view (a terrain under the eye), so the object's proxy is measured.
+constexpr float kProxyWithinRadii = 3.0f;
+constexpr std::size_t kProxyTriangles = 256;
+
+// `object` with every level's triangles thinned to an even sample of at most kProxyTriangles.
+scenes::Object proxyOf(const scenes::Object& object) {
+    scenes::Object proxy = object;
+    for (scenes::Level& level : proxy.levels) {
+        std::size_t total = 0;
+        for (const scenes::Mesh& mesh : level.meshes) total += mesh.indices.size() / 3;
+        const std::size_t stride = std::max<std::size_t>(1, (total + kProxyTriangles - 1) / kProxyTriangles);
+        std::size_t triangle = 0;
+        for (scenes::Mesh& mesh : level.meshes) {
+            std::vector<std::uint32_t> kept;
+            for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3, ++triangle) {
+                if (triangle % stride != 0) continue;
+                kept.insert(kept.end(), mesh.indices.begin() + std::ptrdiff_t(i), mesh.indices.begin() + std::ptrdiff_t(i + 3));
+            }
+            mesh.indices = std::move(kept);
+        }
+    }
+    return proxy;
+}
+
 }  // namespace
 
 SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode)
@@ -195,12 +221,18 @@ void SceneIndex::measureCanonical() {
     // their pixels, which would be copied once per object: the time model reads stats only).
     std::vector<scenes::Texture> textureSizes;
     for (const scenes::Texture& texture : mScene.textures) textureSizes.push_back({texture.name, texture.width, texture.height, {}});
-    c.singles.resize(std::size_t(objectCount()));
+    c.proxies.resize(std::size_t(objectCount()));
+    c.proxyUnseen.resize(std::size_t(levels));
+    c.proxyScale.resize(std::size_t(levels));
+    scenes::Scene single;
+    single.materials = mScene.materials;
+    single.textures = textureSizes;
     for (int o = 0; o < objectCount(); ++o) {
-        scenes::Scene& single = c.singles[std::size_t(o)];
-        single.materials = mScene.materials;
-        single.textures = textureSizes;
         single.objects.assign(1, mScene.objects[o]);
+        scenes::Scene& proxy = c.proxies[std::size_t(o)];
+        proxy.materials = mScene.materials;
+        proxy.textures = textureSizes;
+        proxy.objects.assign(1, proxyOf(mScene.objects[o]));
         const ObjectShape& shape = mShapes[o];
         const float radius = std::max(shape.radius, 1e-4f);
         const float nearDistance = float(radius / std::sin(halfAngle));
@@ -217,20 +249,26 @@ void SceneIndex::measureCanonical() {
         away.target = away.position + glm::vec3(0.0f, 0.0f, nearDistance);  // looking away
         const timemodel::FeatureTable unseen(single, away, mWidth, mHeight);
         const int count = levelCount(o);
-        for (int l = 0; l < count; ++l) c.unseen[mFirstLevel[o] + l] = unseen.contribution(0, l);
+        const timemodel::FeatureTable proxyUnseen(proxy, away, mWidth, mHeight);
+        for (int l = 0; l < count; ++l) {
+            c.unseen[mFirstLevel[o] + l] = unseen.contribution(0, l);
+            c.proxyUnseen[mFirstLevel[o] + l] = proxyUnseen.contribution(0, l);
+        }
         // Exponents from the six axis directions together (a far table per direction would
         // double the set-up time for little: the power a feature scales with is a property of
         // the feature, not of the direction).
         std::vector<FrameFeatures> nearSum(static_cast<std::size_t>(count)), farSum(static_cast<std::size_t>(count));
         std::vector<double> nearAreaSum(static_cast<std::size_t>(count), 0.0), farAreaSum(static_cast<std::size_t>(count), 0.0);
+        std::vector<FrameFeatures> proxySum(static_cast<std::size_t>(count));
         for (int k = 0; k < Canonical::kDirections; ++k) {
             const scenes::Camera nearCamera = cameraAt(c.directions[k], nearDistance);
             const timemodel::FeatureTable nearTable(single, nearCamera, mWidth, mHeight);
             const glm::mat4 nearVp = scenes::projectionMatrix(nearCamera, float(aspect)) * scenes::viewMatrix(nearCamera);
             const bool axis = k < 6;
-            std::unique_ptr<timemodel::FeatureTable> farTable;
+            std::unique_ptr<timemodel::FeatureTable> farTable, proxyTable;
             glm::mat4 farVp(1.0f);
             if (axis) {
+                proxyTable = std::make_unique<timemodel::FeatureTable>(proxy, nearCamera, mWidth, mHeight);
                 const scenes::Camera farCamera = cameraAt(c.directions[k], nearDistance * kFarFactor);
                 farTable = std::make_unique<timemodel::FeatureTable>(single, farCamera, mWidth, mHeight);
                 farVp = scenes::projectionMatrix(farCamera, float(aspect)) * scenes::viewMatrix(farCamera);
@@ -247,7 +285,15 @@ void SceneIndex::measureCanonical() {
                     farSum[l] += farTable->contribution(0, l) - c.unseen[index];
                     nearAreaSum[l] += nearArea;
                     farAreaSum[l] += projectBox(box, farVp * shape.transform, mWidth, mHeight).area;
+                    proxySum[l] += proxyTable->contribution(0, l) - c.proxyUnseen[index];
                 }
+            }
+        }
+        for (int l = 0; l < count; ++l) {
+            FrameFeatures& scale = c.proxyScale[std::size_t(mFirstLevel[o] + l)];
+            for (std::size_t f = 0; f < kFeatureCount; ++f) {
+                const double p = proxySum[l].values[f];
+                scale.values[f] = p > 0.0 ? nearSum[l].values[f] / p : 1.0;
             }
         }
         for (int l = 0; l < count; ++l) {
@@ -297,9 +343,15 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
     const Canonical& c = *mCanonical;
     glm::vec3 toEye = out.camera.position - shape.center;
     const float length = glm::length(toEye);
-    if (length < kExactWithinRadii * shape.radius) {
-        const timemodel::FeatureTable table(c.singles[std::size_t(object)], out.camera, mWidth, mHeight);
-        for (int l = 0; l < count; ++l) out.contributions[first + l] = table.contribution(0, l);
+    if (length < kProxyWithinRadii * shape.radius) {
+        const timemodel::FeatureTable table(c.proxies[std::size_t(object)], out.camera, mWidth, mHeight);
+        for (int l = 0; l < count; ++l) {
+            const int index = first + l;
+            FrameFeatures& f = out.contributions[index];
+            const FrameFeatures seen = table.contribution(0, l) - c.proxyUnseen[index];
+            f = c.unseen[index];
+            for (std::size_t k = 0; k < kFeatureCount; ++k) f.values[k] += seen.values[k] * c.proxyScale[index].values[k];
+        }
         return true;
     }
     // The canonical direction nearest to the eye as seen from the object.

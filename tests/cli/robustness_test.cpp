@@ -456,6 +456,35 @@ TEST_F(Robustness, ScenesWithoutObjectsAndHostileFilesAreBadInput) {
     }
 }
 
+// "Nothing lost": every file lodopt writes goes through scenes::writeFileAtomically (a temporary
+// name, then rename). A stream or image writer opened anywhere else in the modules' sources
+// would bypass it; inside the helpers they write the path named `temporary`.
+TEST(AtomicOutput, EveryWriterInTheSourcesWritesATemporaryFile) {
+    const fs::path root = fs::path(LODOPT_SOURCE_DIR);
+    int writers = 0;
+    for (const char* module : {"cli", "scenes", "renderer", "metrics", "timemodel", "optimizer", "evaluation",
+                               "scheduler"}) {
+        if (!fs::exists(root / module / "src")) continue;
+        for (const auto& entry : fs::recursive_directory_iterator(root / module / "src")) {
+            if (entry.path().extension() != ".cpp" && entry.path().extension() != ".hpp") continue;
+            std::ifstream in(entry.path());
+            int number = 0;
+            for (std::string line; std::getline(in, line);) {
+                ++number;
+                const bool opens = line.find("std::ofstream") != std::string::npos ||
+                                   line.find("ImageOutput::create") != std::string::npos ||
+                                   line.find("imwrite(") != std::string::npos;
+                const std::size_t first = line.find_first_not_of(' ');
+                if (!opens || line.compare(first, 2, "//") == 0) continue;
+                ++writers;
+                EXPECT_NE(line.find("temporary"), std::string::npos)
+                    << entry.path().string() << ":" << number << " writes a file without writeFileAtomically: " << line;
+            }
+        }
+    }
+    EXPECT_GE(writers, 2) << "atomic_file.cpp and image_io.cpp write through their temporary path";
+}
+
 // Every seed and crash regression of the fuzz_metrics_input target, in-process, in every build.
 TEST(MetricsFuzzCorpus, ReplaysWithoutCrashing) {
     const fs::path root = fs::path(LODOPT_SOURCE_DIR) / "tests" / "fuzz";

@@ -18,9 +18,11 @@
 //           exact (a level whose box lies within 2% of the previous level's reuses its
 //           projection), visible triangles scale with the visible share of the box, raster areas with
 //           the screen area, and features added to the time model later are handled alike.
-//           An object whose centre is within 1.5 bounding radii of the eye (a terrain under
-//           it, a tree brushed past) is measured exactly instead, alone in a one-object scene (this
-//           allocates): there a box's screen rectangle says little about what is in view.
+//           An object whose centre is within 3 bounding radii of the eye (a terrain under it,
+//           a tree walked past) is measured instead through its proxy: the object alone with
+//           an even sample of at most 256 triangles per level, its features scaled per feature
+//           by the ratio object / proxy seen from the axis directions (this allocates): there a
+//           box's screen rectangle says little about what is in view.
 //           Features that depend on the other objects (the time model's shaded pixels, which
 //           a depth pass over the whole frame decides) see the object alone in both cases, so
 //           Bounds over-counts occluded fragments; the measured-time feedback absorbs such a
