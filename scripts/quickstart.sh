@@ -15,7 +15,7 @@ packages=(
   libosmesa6-dev libopencv-dev libopenimageio-dev openimageio-tools
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev ccache
 )
 missing=()
 for package in "${packages[@]}"; do
@@ -28,6 +28,10 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
+
+# ccache (CMakeLists.txt uses it when found): paths relative to the checkout, so a fresh clone in
+# another folder (CI) hits what an earlier build here compiled; -g1 builds ignore the folder too.
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
 
 build=${LODOPT_BUILD_DIR:-build}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -1,15 +1,14 @@
 #include "bench_run.hpp"
 
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
-#include <random>
-
-#include <time.h>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+#include <random>
 
 #include "cli_common.hpp"
 #include "metrics/incremental_evaluator.hpp"
@@ -234,8 +233,8 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewCon
     }
     const evaluation::ViewSetup& setup = *context.setup;
     std::vector<EvalPathRow> rows;
-    for (const auto& [workload, set] : {std::pair<std::string, const std::vector<optimizer::Combination>*>{"random", &random},
-                                        {"walk", &walk}}) {
+    for (const auto& [workload, set] :
+         {std::pair<std::string, const std::vector<optimizer::Combination>*>{"random", &random}, {"walk", &walk}}) {
         // Full path first: its fitness is what the fast path is compared with.
         evaluation::FullRenderEvaluator full(setup, *prepared.renderer, prepared.metrics);
         full.evaluate(set->front());  // warm-up: buffers sized, GL state touched
@@ -314,39 +313,51 @@ std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContex
     auto none = [] {};
     volatile double sink = 0.0;
     const double ssimReference = referenceSsim(candidate, reference);
-    add("ssim", [&] { sink = metrics::ssim(c, r, parameters); }, "OpenCV float64 GaussianBlur SSIM",
+    add(
+        "ssim", [&] { sink = metrics::ssim(c, r, parameters); }, "OpenCV float64 GaussianBlur SSIM",
         [&] { sink = referenceSsim(candidate, reference); }, metrics::ssim(c, r, parameters), ssimReference);
     const double boundaryReference = referenceBoundaryEntropy(candidate);
-    add("boundary_entropy", [&] { sink = metrics::boundaryEntropy(c, parameters); }, "OpenCV float64 Sobel histogram",
-        [&] { sink = referenceBoundaryEntropy(candidate); }, metrics::boundaryEntropy(c, parameters), boundaryReference);
+    add(
+        "boundary_entropy", [&] { sink = metrics::boundaryEntropy(c, parameters); }, "OpenCV float64 Sobel histogram",
+        [&] { sink = referenceBoundaryEntropy(candidate); }, metrics::boundaryEntropy(c, parameters),
+        boundaryReference);
     const double informationReference = referenceInformationEntropy(candidate);
-    add("information_entropy", [&] { sink = metrics::informationEntropy(c, parameters); },
-        "float64 gray histogram", [&] { sink = referenceInformationEntropy(candidate); },
-        metrics::informationEntropy(c, parameters), informationReference);
-    add("precision_recall", [&] { sink = metrics::precisionRecall(c, r, parameters).precision; }, "", none, 0.0, 0.0);
+    add(
+        "information_entropy", [&] { sink = metrics::informationEntropy(c, parameters); }, "float64 gray histogram",
+        [&] { sink = referenceInformationEntropy(candidate); }, metrics::informationEntropy(c, parameters),
+        informationReference);
+    add(
+        "precision_recall", [&] { sink = metrics::precisionRecall(c, r, parameters).precision; }, "", none, 0.0, 0.0);
     // The fused fitness from the three references (GAPSO15: equal weights, entropy fidelity
     // 1 - |e(c) - e(r)| / |e(r)|).
     auto fidelity = [](double candidateValue, double referenceValue) {
-        return std::clamp(1.0 - std::abs(candidateValue - referenceValue) / std::max(std::abs(referenceValue), 1e-6), 0.0, 1.0);
+        return std::clamp(1.0 - std::abs(candidateValue - referenceValue) / std::max(std::abs(referenceValue), 1e-6),
+                          0.0, 1.0);
     };
     const double fusedReference =
-        (std::clamp(ssimReference, 0.0, 1.0) +
-         fidelity(boundaryReference, referenceBoundaryEntropy(reference)) +
-         fidelity(informationReference, referenceInformationEntropy(reference))) / 3.0;
+        (std::clamp(ssimReference, 0.0, 1.0) + fidelity(boundaryReference, referenceBoundaryEntropy(reference)) +
+         fidelity(informationReference, referenceInformationEntropy(reference))) /
+        3.0;
     const double fused = metrics::evaluate(c, r, parameters).fitness;
-    add("evaluate (fused, from scratch)", [&] { sink = metrics::evaluate(c, r, parameters).fitness; },
-        "fused float64 references", [&] {
+    add(
+        "evaluate (fused, from scratch)", [&] { sink = metrics::evaluate(c, r, parameters).fitness; },
+        "fused float64 references",
+        [&] {
             sink = (std::clamp(referenceSsim(candidate, reference), 0.0, 1.0) +
                     fidelity(referenceBoundaryEntropy(candidate), referenceBoundaryEntropy(reference)) +
-                    fidelity(referenceInformationEntropy(candidate), referenceInformationEntropy(reference))) / 3.0;
+                    fidelity(referenceInformationEntropy(candidate), referenceInformationEntropy(reference))) /
+                   3.0;
         },
         fused, fusedReference);
     metrics::IncrementalEvaluator incremental(r, parameters);
     incremental.setCandidate(c);
-    add("incremental: whole candidate", [&] {
-        incremental.setCandidate(c);
-        sink = incremental.result().fitness;
-    }, "evaluate (fused, from scratch)", [&] { sink = metrics::evaluate(c, r, parameters).fitness; },
+    add(
+        "incremental: whole candidate",
+        [&] {
+            incremental.setCandidate(c);
+            sink = incremental.result().fitness;
+        },
+        "evaluate (fused, from scratch)", [&] { sink = metrics::evaluate(c, r, parameters).fitness; },
         incremental.result().fitness, fused);
     // One 64x64 rectangle toggled between the reference and the candidate.
     const int x0 = std::max(0, width / 2 - 32), y0 = std::max(0, height / 2 - 32);
@@ -359,11 +370,14 @@ std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContex
     const metrics::ImageView p = metrics::makeImageView(patched.rgba.data(), width, height, 4);
     incremental.setCandidate(r);
     bool toggle = false;
-    add("incremental: 64x64 rectangle", [&] {
-        toggle = !toggle;
-        incremental.updateRect(toggle ? p : r, x0, y0, x1, y1);
-        sink = incremental.result().fitness;
-    }, "", none, 0.0, 0.0);
+    add(
+        "incremental: 64x64 rectangle",
+        [&] {
+            toggle = !toggle;
+            incremental.updateRect(toggle ? p : r, x0, y0, x1, y1);
+            sink = incremental.result().fitness;
+        },
+        "", none, 0.0, 0.0);
     incremental.setCandidate(r);
     incremental.updateRect(p, x0, y0, x1, y1);
     rows.back().reference = "evaluate (fused, from scratch)";
@@ -373,8 +387,8 @@ std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContex
 }
 
 std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewContext& context,
-                                            const OptimizeOptions& options, int frames, int repeats,
-                                            std::uint64_t seed, std::vector<std::string>& warnings) {
+                                            const OptimizeOptions& options, int frames, int repeats, std::uint64_t seed,
+                                            std::vector<std::string>& warnings) {
     timemodel::DeviceProfile profile;
     try {
         profile = options.profile.empty() ? timemodel::shippedProfile(prepared.scene.name)

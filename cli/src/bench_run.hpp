@@ -73,7 +73,7 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewCon
                                           const OptimizeOptions& options, int candidates, std::uint64_t seed);
 
 struct MetricsRow {
-    std::string function;   // "ssim", "boundary_entropy", ...
+    std::string function;  // "ssim", "boundary_entropy", ...
     int width = 0, height = 0;
     std::int64_t calls = 0;
     double microsecondsPerCall = 0.0;
@@ -94,7 +94,7 @@ struct TimeModelRow {
 // profile's clock (least wall time by default, as `lodopt calibrate` fits it).
 // `warnings` gets the profile's mismatch sentences (render size, renderer, machine).
 std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewContext& context,
-                                            const OptimizeOptions& options, int frames, int repeats,
-                                            std::uint64_t seed, std::vector<std::string>& warnings);
+                                            const OptimizeOptions& options, int frames, int repeats, std::uint64_t seed,
+                                            std::vector<std::string>& warnings);
 
 }  // namespace lodopt::cli

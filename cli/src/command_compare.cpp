@@ -242,7 +242,12 @@ void addCompareCommand(CLI::App& app) {
                 saveCheckpoint(checkpoint, identity, saved);
                 progress.step(name + " seed " + std::to_string(seed));
                 // After the last run only the summary is left: finish it rather than stop.
-                if (++done < total) pollInterrupt("compare", done, total, "run", checkpoint);
+                try {
+                    if (++done < total) pollInterrupt("compare", done, total, "run", checkpoint);
+                } catch (const Interrupted&) {
+                    progress.finish();  // the message starts on a clean line
+                    throw;
+                }
             }
         }
         progress.finish();

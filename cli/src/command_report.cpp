@@ -25,12 +25,18 @@ enum class Kind { Optimize, Compare, Schedule, Tune, Profile, Bench };
 
 const char* kindName(Kind kind) {
     switch (kind) {
-        case Kind::Optimize: return "optimize";
-        case Kind::Compare: return "compare";
-        case Kind::Schedule: return "schedule";
-        case Kind::Tune: return "tune";
-        case Kind::Profile: return "calibrate";
-        case Kind::Bench: return "bench";
+        case Kind::Optimize:
+            return "optimize";
+        case Kind::Compare:
+            return "compare";
+        case Kind::Schedule:
+            return "schedule";
+        case Kind::Tune:
+            return "tune";
+        case Kind::Profile:
+            return "calibrate";
+        case Kind::Bench:
+            return "bench";
     }
     return "?";
 }
@@ -46,11 +52,10 @@ bool endsWith(const std::string& text, const std::string& suffix) {
 
 // Files that belong to a recognised folder kind and are not inputs of their own.
 bool isKnownFile(const std::string& name) {
-    static const std::vector<std::string> kKnown = {"result.json", "curve.csv", "optimized.png", "reference.png",
-                                                    "compare.json", "compare.csv", "curves.csv", "frames.csv",
-                                                    "summary.json", "report.html", kBenchJson, kBenchAlgorithmsCsv,
-                                                    kBenchRunsCsv, kBenchEvalPathsCsv, kBenchMetricsCsv,
-                                                    kBenchTimeModelCsv};
+    static const std::vector<std::string> kKnown = {
+        "result.json", "curve.csv",        "optimized.png",  "reference.png",   "compare.json", "compare.csv",
+        "curves.csv",  "frames.csv",       "summary.json",   "report.html",     kBenchJson,     kBenchAlgorithmsCsv,
+        kBenchRunsCsv, kBenchEvalPathsCsv, kBenchMetricsCsv, kBenchTimeModelCsv};
     return std::find(kKnown.begin(), kKnown.end(), name) != kKnown.end() || name.rfind("bench_pareto", 0) == 0 ||
            name.rfind(".", 0) == 0;
 }
@@ -79,7 +84,8 @@ bool classifyJson(const fs::path& file, std::vector<Found>& found) {
 void scanFolder(const fs::path& folder, int depth, const fs::path& skip, std::vector<Found>& found,
                 std::vector<fs::path>& other) {
     if (fs::exists(folder / "result.json")) found.push_back({Kind::Optimize, folder});
-    if (fs::exists(folder / "compare.json") || fs::exists(folder / "curves.csv")) found.push_back({Kind::Compare, folder});
+    if (fs::exists(folder / "compare.json") || fs::exists(folder / "curves.csv"))
+        found.push_back({Kind::Compare, folder});
     if (fs::exists(folder / kBenchJson)) found.push_back({Kind::Bench, folder});
     if (fs::exists(folder / "frames.csv")) found.push_back({Kind::Schedule, folder / "frames.csv"});
     std::vector<fs::path> entries;
@@ -140,37 +146,52 @@ void runReport(const ReportCommandOptions& options) {
     } else if (input.extension() == ".csv") {
         found.push_back({Kind::Schedule, input});
     } else if (input.extension() != ".json" || !classifyJson(input, found)) {
-        throw UsageError(options.input + ": not an output lodopt report knows (a folder of optimize, compare, "
-                                         "schedule or bench, a tune coefficients file or a calibrate profile)");
+        throw UsageError(options.input +
+                         ": not an output lodopt report knows (a folder of optimize, compare, "
+                         "schedule or bench, a tune coefficients file or a calibrate profile)");
     }
     if (found.empty()) {
-        throw UsageError(options.input + ": no output of optimize (result.json), compare (compare.json), schedule "
-                                         "(frames.csv), bench (bench.json), tune or calibrate found");
+        throw UsageError(options.input +
+                         ": no output of optimize (result.json), compare (compare.json), schedule "
+                         "(frames.csv), bench (bench.json), tune or calibrate found");
     }
 
     const Plotter plotter(plotDir.string());
     const fs::path canonical = fs::weakly_canonical(input);
-    HtmlReport html("lodopt report: " + (canonical.filename().empty() ? canonical.string() : canonical.filename().string()));
-    html.raw("<p class=\"meta\">" + escapeHtml("From " + canonical.string() + ", " +
-                                               timemodel::currentDateUtc() + ", lodopt 0.1.0. Plots: " +
-                                               plotter.description() + "; their data and gnuplot scripts are in " +
-                                               plotDir.filename().string() + "/ beside this page.") +
+    HtmlReport html("lodopt report: " +
+                    (canonical.filename().empty() ? canonical.string() : canonical.filename().string()));
+    html.raw("<p class=\"meta\">" +
+             escapeHtml("From " + canonical.string() + ", " + timemodel::currentDateUtc() +
+                        ", lodopt 0.1.0. Plots: " + plotter.description() + "; their data and gnuplot scripts are in " +
+                        plotDir.filename().string() + "/ beside this page.") +
              "</p>\n");
     if (!plotter.available()) html.note("No plots could be drawn: " + plotter.description() + ".");
     nlohmann::json sections = nlohmann::json::array();
     for (const Found& item : found) {
-        ReportContext context{html, plotter, options.report,
-                              prefixOf(root, fs::is_directory(item.path) ? item.path : item.path.parent_path()) +
-                                  (item.kind == Kind::Tune || item.kind == Kind::Profile
-                                       ? item.path.stem().string() + "_"
-                                       : std::string())};
+        ReportContext context{
+            html, plotter, options.report,
+            prefixOf(root, fs::is_directory(item.path) ? item.path : item.path.parent_path()) +
+                (item.kind == Kind::Tune || item.kind == Kind::Profile ? item.path.stem().string() + "_"
+                                                                       : std::string())};
         switch (item.kind) {
-            case Kind::Optimize: addOptimizeSection(context, item.path); break;
-            case Kind::Compare: addCompareSection(context, item.path); break;
-            case Kind::Bench: addBenchSection(context, item.path); break;
-            case Kind::Schedule: addScheduleSection(context, item.path); break;
-            case Kind::Tune: addTuneSection(context, item.path, readJsonFile(item.path.string())); break;
-            case Kind::Profile: addProfileSection(context, item.path); break;
+            case Kind::Optimize:
+                addOptimizeSection(context, item.path);
+                break;
+            case Kind::Compare:
+                addCompareSection(context, item.path);
+                break;
+            case Kind::Bench:
+                addBenchSection(context, item.path);
+                break;
+            case Kind::Schedule:
+                addScheduleSection(context, item.path);
+                break;
+            case Kind::Tune:
+                addTuneSection(context, item.path, readJsonFile(item.path.string()));
+                break;
+            case Kind::Profile:
+                addProfileSection(context, item.path);
+                break;
         }
         sections.push_back({{"kind", kindName(item.kind)}, {"path", item.path.string()}});
     }
@@ -202,11 +223,11 @@ void runReport(const ReportCommandOptions& options) {
 void addReportCommand(CLI::App& app) {
     auto options = std::make_shared<ReportCommandOptions>();
     CLI::App* command = app.add_subcommand(
-        "report", "One self-contained HTML page from the output of optimize, compare, tune, schedule, calibrate or bench");
+        "report",
+        "One self-contained HTML page from the output of optimize, compare, tune, schedule, calibrate or bench");
     command->add_option("input", options->input, "Output folder (or a profile / coefficients JSON file)")->required();
     command->add_option("--out", options->out, "HTML file (default: INPUT/report.html)");
-    command->add_option("--baseline", options->report.baseline,
-                        "Algorithm shown beside the optimized image, or 'none'")
+    command->add_option("--baseline", options->report.baseline, "Algorithm shown beside the optimized image, or 'none'")
         ->capture_default_str();
     command->add_option("--profile", options->report.profile,
                         "Device profile for the baseline's time model (default: the one result.json names)");

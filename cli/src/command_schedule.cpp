@@ -50,7 +50,8 @@ struct ScheduleOptions {
 // Fused fitness of `frame` against `reference` (both RGBA renders of one size).
 double fitnessOf(const renderer::Frame& frame, const renderer::Frame& reference, const metrics::MetricParameters& p) {
     const metrics::ImageView candidate = metrics::makeImageView(frame.rgba.data(), frame.width, frame.height, 4);
-    const metrics::ImageView truth = metrics::makeImageView(reference.rgba.data(), reference.width, reference.height, 4);
+    const metrics::ImageView truth =
+        metrics::makeImageView(reference.rgba.data(), reference.width, reference.height, 4);
     return metrics::evaluate(candidate, truth, p).fitness;
 }
 
@@ -81,7 +82,8 @@ std::string csvNumber(double value) {
 std::string framesCsv(const std::vector<FrameRow>& rows, int maxLevels) {
     std::ostringstream csv;
     csv << "frame,time_s,decision_us,predicted_ms,measured_ms,finest_predicted_ms,baseline_predicted_ms,"
-           "baseline_measured_ms,exact_predicted_ms,budget_reachable,budget_met,fitness,baseline_fitness,visible,culled,dropped,drawn,"
+           "baseline_measured_ms,exact_predicted_ms,budget_reachable,budget_met,fitness,baseline_fitness,visible,"
+           "culled,dropped,drawn,"
            "protected_lowered,forced_switches,switches,held,feedback_scale";
     for (int l = 0; l < maxLevels; ++l) csv << ",level_" << l;
     csv << "\n";
@@ -91,11 +93,10 @@ std::string framesCsv(const std::vector<FrameRow>& rows, int maxLevels) {
         csv << r.frame << ',' << csvNumber(r.timeSeconds) << ',' << csvNumber(r.decisionMicroseconds) << ','
             << csvNumber(r.predictedMs) << ',' << csvNumber(r.measuredMs) << ',' << csvNumber(r.finestPredictedMs)
             << ',' << csvNumber(r.baselinePredictedMs) << ',' << csvNumber(r.baselineMeasuredMs) << ','
-            << csvNumber(r.exactPredictedMs) << ','
-            << int(d.budgetReachable) << ',' << int(d.budgetMet) << ',' << csvNumber(r.fitness) << ','
-            << csvNumber(r.baselineFitness) << ',' << d.visibleObjects << ',' << d.culledObjects << ','
-            << d.droppedObjects << ',' << drawn << ',' << d.protectedLowered << ',' << d.forcedSwitches << ','
-            << d.switches << ',' << d.heldObjects << ',' << csvNumber(r.feedbackScale);
+            << csvNumber(r.exactPredictedMs) << ',' << int(d.budgetReachable) << ',' << int(d.budgetMet) << ','
+            << csvNumber(r.fitness) << ',' << csvNumber(r.baselineFitness) << ',' << d.visibleObjects << ','
+            << d.culledObjects << ',' << d.droppedObjects << ',' << drawn << ',' << d.protectedLowered << ','
+            << d.forcedSwitches << ',' << d.switches << ',' << d.heldObjects << ',' << csvNumber(r.feedbackScale);
         for (int count : r.histogram) csv << ',' << count;
         csv << "\n";
     }
@@ -168,8 +169,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     const auto setupStart = std::chrono::steady_clock::now();
     const scheduler::SceneIndex index(scene, settings.width, settings.height, mode);
     scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
-    const double setupSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
+    const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
 
     metrics::MetricParameters metricParameters;
     const scenes::Combination reference = scenes::referenceCombination(scene);
@@ -215,7 +215,8 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
                 }
             }
             row.measuredMs = renderer->timeRender(row.decision.levels, camera, options.repeats, 1);
-            if (!options.noBaseline) row.baselineMeasuredMs = renderer->timeRender(baseline, camera, options.repeats, 1);
+            if (!options.noBaseline)
+                row.baselineMeasuredMs = renderer->timeRender(baseline, camera, options.repeats, 1);
             if (!options.noFeedback) frameScheduler.reportMeasuredMs(row.measuredMs);
         }
         row.feedbackScale = frameScheduler.model().feedbackScale();
@@ -225,7 +226,8 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     progress.finish();
 
     // Summary.
-    std::vector<double> decisionUs, predicted, measured, baselineMeasured, fitness, baselineFitness, error, featureError;
+    std::vector<double> decisionUs, predicted, measured, baselineMeasured, fitness, baselineFitness, error,
+        featureError;
     int switches = 0, forced = 0, protectedFrames = 0, unreachable = 0, overPredicted = 0, dropped = 0;
     for (const FrameRow& r : rows) {
         decisionUs.push_back(r.decisionMicroseconds);
@@ -274,8 +276,8 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         {"frames_budget_unreachable", unreachable},
         {"frames_predicted_over_budget", overPredicted},
         {"frames_protected_lowered", protectedFrames},
-        {"switches", {{"total", switches}, {"per_frame", rows.empty() ? 0.0 : double(switches) / rows.size()},
-                      {"forced", forced}}},
+        {"switches",
+         {{"total", switches}, {"per_frame", rows.empty() ? 0.0 : double(switches) / rows.size()}, {"forced", forced}}},
         {"dropped_objects_per_frame", rows.empty() ? 0.0 : double(dropped) / rows.size()},
         {"final_feedback_scale", frameScheduler.model().feedbackScale()},
     };
@@ -314,8 +316,8 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     if (options.render) {
         const BudgetShares s = budgetShares(rows, budget, measuredOf, reachable);
         std::cout << "  measured " << spreadOf(measured).mean << " ms mean; within ±10% of the budget on "
-                  << std::setprecision(0) << 100.0 * s.within10 << "% of " << s.frames << " reachable frames, <= 110% on "
-                  << 100.0 * s.atMost110 << "%";
+                  << std::setprecision(0) << 100.0 * s.within10 << "% of " << s.frames
+                  << " reachable frames, <= 110% on " << 100.0 * s.atMost110 << "%";
         if (!options.noBaseline) {
             const BudgetShares b = budgetShares(rows, budget, baselineOf, reachable);
             std::cout << " (unscheduled: " << 100.0 * b.within10 << "%, " << 100.0 * b.atMost110 << "%)";
@@ -339,7 +341,8 @@ void addScheduleCommand(CLI::App& app) {
     CLI::App* command = app.add_subcommand("schedule", "Real-time LOD scheduling along a camera path");
     command->add_option("--scene", options->scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
     command->add_option("--scene-seed", options->sceneSeed, "Seed of a built-in scene")->capture_default_str();
-    command->add_option("--path", options->path, "Camera path: a name in the scene or a JSON file (default: the scene's first)");
+    command->add_option("--path", options->path,
+                        "Camera path: a name in the scene or a JSON file (default: the scene's first)");
     command->add_option("--budget-ms", options->budgetMs, "Frame-time budget in milliseconds")
         ->required()
         ->check(CLI::PositiveNumber);

@@ -34,7 +34,7 @@ namespace {
 
 struct TuneOptions {
     OptimizeOptions optimize;
-    int views = 8;
+    int views = 16;
     std::string path;
     int holdout = 0;  // 0 = automatic
     std::string out = "coeffs.json";
@@ -61,9 +61,17 @@ struct TuneView {
 
 nlohmann::json settingsSignature(const TuneOptions& o) {
     const OptimizeOptions& p = o.optimize;
-    return {{"scene", p.scene},   {"seed", p.seed},         {"size", p.size},       {"budget_ms", p.budgetMs},
-            {"algorithm", p.algorithm}, {"evals", p.maxEvaluations}, {"max_iterations", p.maxIterations},
-            {"weights", p.weights}, {"profile", p.profile}, {"model", p.model},     {"path", o.path},
+    return {{"scene", p.scene},
+            {"seed", p.seed},
+            {"size", p.size},
+            {"budget_ms", p.budgetMs},
+            {"algorithm", p.algorithm},
+            {"evals", p.maxEvaluations},
+            {"max_iterations", p.maxIterations},
+            {"weights", p.weights},
+            {"profile", p.profile},
+            {"model", p.model},
+            {"path", o.path},
             {"views", o.views}};
 }
 
@@ -104,7 +112,8 @@ double schedulerFraction(TuneView& view, scheduler::FrameScheduler& frameSchedul
     const scheduler::FrameDecision& decision = frameScheduler.decide(view.camera, 0.0);
     const optimizer::Combination combination = view.setup->fromScene(decision.levels);
     auto it = view.cache.find(combination);
-    if (it == view.cache.end()) it = view.cache.emplace(combination, view.evaluator->evaluate(combination).fitness).first;
+    if (it == view.cache.end())
+        it = view.cache.emplace(combination, view.evaluator->evaluate(combination).fitness).first;
     if (fitnessOut) *fitnessOut = it->second;
     // The exact features of the view (the optimizer's cost) for the scheduler's levels.
     if (predictedOut) *predictedOut = view.cost->predictSceneMs(decision.levels);
@@ -223,9 +232,9 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     // The model the optimizer's cost used, without feedback (its warnings were printed once
     // already by prepareScene).
     std::ostringstream repeatedWarnings;
-    const TimeEstimator estimator = loadTimeEstimator(options.optimize.profile, options.optimize.model,
-                                                      prepared.scene.name, prepared.settings,
-                                                      prepared.renderer->glRendererString(), repeatedWarnings);
+    const TimeEstimator estimator =
+        loadTimeEstimator(options.optimize.profile, options.optimize.model, prepared.scene.name, prepared.settings,
+                          prepared.renderer->glRendererString(), repeatedWarnings);
     scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
 
     std::vector<scenes::Camera> tuningCameras;
@@ -275,7 +284,8 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     for (TuneView& view : views) {
         double defaultFitness = 0.0, tunedFitness = 0.0, defaultMs = 0.0, tunedMs = 0.0;
         const double defaultFraction = schedulerFraction(view, frameScheduler, defaults, &defaultFitness, &defaultMs);
-        const double tunedFraction = schedulerFraction(view, frameScheduler, best.coefficients, &tunedFitness, &tunedMs);
+        const double tunedFraction =
+            schedulerFraction(view, frameScheduler, best.coefficients, &tunedFitness, &tunedMs);
         perView.push_back({{"view", view.camera.name},
                            {"held_out", view.heldOut},
                            {"resumed", view.resumed},
@@ -310,8 +320,8 @@ void runTune(TuneOptions options, const OutputOptions& output) {
         {"features", scheduler::toString(mode)},
         {"organisation", scheduler::toString(parameters.organisation)},
         {"form", scheduler::toString(best.form)},
-        {"term_scales", {{"distance", scales.distance}, {"area", scales.area}, {"pixels", scales.pixels},
-                         {"center", scales.center}}},
+        {"term_scales",
+         {{"distance", scales.distance}, {"area", scales.area}, {"pixels", scales.pixels}, {"center", scales.center}}},
         {"defaults", {{"tuning_fraction", defaultTuning}, {"held_out_fraction", defaultHeldOut}}},
         {"tuned", {{"tuning_fraction", best.search.bestValue}, {"held_out_fraction", best.heldOutMean}}},
         {"forms", formsJson},
@@ -388,7 +398,8 @@ void addTuneCommand(CLI::App& app) {
     command->add_option("--organisation", options->organisation, "Scheduler: flat or tiles")
         ->check(CLI::IsMember({"flat", "tiles"}))
         ->capture_default_str();
-    command->add_option("--seed", o.seed, "Seed of the viewpoints, the optimizer and the search")->capture_default_str();
+    command->add_option("--seed", o.seed, "Seed of the viewpoints, the optimizer and the search")
+        ->capture_default_str();
     command->add_option("--size", o.size, "Render size WIDTHxHEIGHT")->capture_default_str();
     command->add_option("--threads", o.threads, "Evaluation threads")->check(CLI::Range(1, 256));
     command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();

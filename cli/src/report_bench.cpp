@@ -34,8 +34,9 @@ PlotSpec paretoPlot(const CsvTable& algorithms, const std::string& name) {
         if (p.gap > 0.0) smallestGap = std::min(smallestGap, p.gap);
     }
     // A gap of 0 cannot sit on a log axis: it is drawn one decade below the smallest positive gap.
-    const double floorGap = std::isfinite(smallestGap) ? std::clamp(std::pow(10.0, std::floor(std::log10(smallestGap)) - 1.0), 1e-12, 1e-3)
-                                                       : 1e-6;
+    const double floorGap = std::isfinite(smallestGap)
+                                ? std::clamp(std::pow(10.0, std::floor(std::log10(smallestGap)) - 1.0), 1e-12, 1e-3)
+                                : 1e-6;
     std::ostringstream data, front, plots;
     data << "# per algorithm (one index block each): median wall seconds, median gap (0 drawn as " << floorGap
          << "), evaluation budget\n";
@@ -52,9 +53,10 @@ PlotSpec paretoPlot(const CsvTable& algorithms, const std::string& name) {
         data << "\n\n";
         const std::string color = seriesColor(int(a));
         plots << (block ? ", " : "") << "'" << name << ".dat' index " << block
-              << " using 1:2 with linespoints pt 7 ps 1.3 lw 1.5 lc rgb '" << color << "' title '" << order[a]
-              << "', '' index " << block << " using 1:2:(sprintf('%d', $3)) with labels offset char 0.9,0.6 font ',7' tc rgb '"
-              << color << "' notitle";
+              << " using 1:2 with linespoints pt 7 ps 1.3 lw 1.5 lc rgb '" << color << "' title "
+              << gnuplotString(order[a]) << ", '' index " << block
+              << " using 1:2:(sprintf('%d', $3)) with labels offset char 0.9,0.6 font ',7' tc rgb '" << color
+              << "' notitle";
         ++block;
     }
     // Pareto front: the points no other point beats in both time and gap.
@@ -74,7 +76,7 @@ PlotSpec paretoPlot(const CsvTable& algorithms, const std::string& name) {
     spec.title = "Run time against error (median over seeds per evaluation budget)";
     spec.data = {{name + ".dat", data.str()}, {name + "_front.dat", front.str()}};
     std::ostringstream script;
-    script << "set logscale xy\nset xlabel 'wall time per run (s)'\n"
+    script << "set logscale xy\nset xtics enhanced\nset xlabel 'wall time per run (s)'\n"
            << "set ylabel 'gap to the best fitness known'\nset format y '10^{%L}'\nset format x '10^{%L}'\n"
            << "set ytics add ('0' " << floorGap << ")\nset yrange [" << floorGap / 2.0 << ":*]\n"
            << "set key outside right top\n"
@@ -97,7 +99,8 @@ std::vector<std::vector<std::string>> csvRows(const CsvTable& table, const std::
         for (std::size_t c = 0; c < columns.size(); ++c) {
             const std::string& field = table.text(r, columns[c]);
             const double factor = c < scale.size() ? scale[c] : 0.0;
-            row.push_back(factor > 0.0 && !field.empty() ? formatNumber(table.number(r, columns[c]) * factor, 4) : field);
+            row.push_back(factor > 0.0 && !field.empty() ? formatNumber(table.number(r, columns[c]) * factor, 4)
+                                                         : field);
         }
         rows.push_back(row);
     }
@@ -124,6 +127,12 @@ void addBenchSection(ReportContext& context, const fs::path& folder) {
         " seeds per stochastic algorithm. Best fitness known " + formatNumber(jsonNumber(best, "fitness", NAN), 6) +
         " (" + jsonText(best, "source", "?") + ", " + formatNumber(jsonNumber(best, "combinations", NAN), 4) +
         " combinations). Whole bench: " + formatNumber(jsonNumber(document, "seconds", NAN), 3) + " s.");
+    if (document.contains("surrogate_table") && document["surrogate_table"].is_object()) {
+        const nlohmann::json& table = document["surrogate_table"];
+        context.html.paragraph("mckp's per-view loss table (measured once before any run, not in mckp's wall time): " +
+                               jsonText(table, "evaluations", "?") + " evaluations, " +
+                               formatNumber(jsonNumber(table, "seconds", NAN), 3) + " s.");
+    }
 
     const fs::path algorithmsPath = folder / kBenchAlgorithmsCsv;
     if (fs::exists(algorithmsPath)) {
@@ -132,12 +141,13 @@ void addBenchSection(ReportContext& context, const fs::path& folder) {
         context.plot(paretoPlot(algorithms, context.prefix + "bench_pareto"),
                      "Each line is one algorithm through its evaluation budgets (numbers at the points); lower left is "
                      "better. Gap = best fitness known − the run's fitness, median over seeds.");
-        hasColumns(algorithms, {"algorithm", "evaluation_budget", "runs", "median_wall_seconds", "median_gap", "min_gap",
-                                "max_gap", "median_fitness", "median_evaluations"});
-        context.html.table({"algorithm", "evaluation budget", "runs", "median wall s", "median gap", "min gap", "max gap",
-                            "median fitness", "median evaluations"},
-                           csvRows(algorithms, {"algorithm", "evaluation_budget", "runs", "median_wall_seconds",
-                                                "median_gap", "min_gap", "max_gap", "median_fitness", "median_evaluations"},
+        hasColumns(algorithms, {"algorithm", "evaluation_budget", "runs", "median_wall_seconds", "median_gap",
+                                "min_gap", "max_gap", "median_fitness", "median_evaluations"});
+        context.html.table({"algorithm", "evaluation budget", "runs", "median wall s", "median gap", "min gap",
+                            "max gap", "median fitness", "median evaluations"},
+                           csvRows(algorithms,
+                                   {"algorithm", "evaluation_budget", "runs", "median_wall_seconds", "median_gap",
+                                    "min_gap", "max_gap", "median_fitness", "median_evaluations"},
                                    {0, 0, 0, 1, 1, 1, 1, 1, 0}));
     }
     const fs::path pathsPath = folder / kBenchEvalPathsCsv;
@@ -146,12 +156,14 @@ void addBenchSection(ReportContext& context, const fs::path& folder) {
         hasColumns(paths, {"path", "workload", "mode", "threads", "candidates", "evals_per_second",
                            "mean_abs_fitness_diff", "max_abs_fitness_diff"});
         context.html.heading(3, "Fast vs full evaluation path");
-        context.html.paragraph("The same candidates through both paths: random = independent candidates, walk = one "
-                               "variable changed per step. Fitness differences are against the full path.");
+        context.html.paragraph(
+            "The same candidates through both paths: random = independent candidates, walk = one "
+            "variable changed per step. Fitness differences are against the full path.");
         context.html.table({"path", "workload", "mode", "threads", "candidates", "evaluations/s", "mean |Δ fitness|",
                             "max |Δ fitness|"},
-                           csvRows(paths, {"path", "workload", "mode", "threads", "candidates", "evals_per_second",
-                                           "mean_abs_fitness_diff", "max_abs_fitness_diff"},
+                           csvRows(paths,
+                                   {"path", "workload", "mode", "threads", "candidates", "evals_per_second",
+                                    "mean_abs_fitness_diff", "max_abs_fitness_diff"},
                                    {0, 0, 0, 0, 0, 1, 1, 1}));
     }
     const fs::path metricsPath = folder / kBenchMetricsCsv;
@@ -160,21 +172,22 @@ void addBenchSection(ReportContext& context, const fs::path& folder) {
         hasColumns(metricsTable, {"function", "width", "height", "microseconds_per_call", "reference",
                                   "reference_microseconds_per_call", "abs_deviation"});
         context.html.heading(3, "Metrics: time per call and deviation from float64 references");
-        context.html.table({"function", "width", "height", "µs per call", "reference", "reference µs per call",
-                            "|deviation|"},
-                           csvRows(metricsTable, {"function", "width", "height", "microseconds_per_call", "reference",
-                                                  "reference_microseconds_per_call", "abs_deviation"},
-                                   {0, 0, 0, 1, 0, 1, 1}));
+        context.html.table(
+            {"function", "width", "height", "µs per call", "reference", "reference µs per call", "|deviation|"},
+            csvRows(metricsTable,
+                    {"function", "width", "height", "microseconds_per_call", "reference",
+                     "reference_microseconds_per_call", "abs_deviation"},
+                    {0, 0, 0, 1, 0, 1, 1}));
     }
     const fs::path timePath = folder / kBenchTimeModelCsv;
     if (fs::exists(timePath)) {
         const CsvTable timeTable = readCsv(timePath.string());
         hasColumns(timeTable, {"model", "source", "samples", "mean_error", "median_error", "p90_error", "max_error"});
         context.html.heading(3, "Time models: relative error |t_act − t_est| / t_act");
-        context.html.table({"model", "frames", "samples", "mean %", "median %", "p90 %", "max %"},
-                           csvRows(timeTable, {"model", "source", "samples", "mean_error", "median_error", "p90_error",
-                                               "max_error"},
-                                   {0, 0, 0, 100, 100, 100, 100}));
+        context.html.table(
+            {"model", "frames", "samples", "mean %", "median %", "p90 %", "max %"},
+            csvRows(timeTable, {"model", "source", "samples", "mean_error", "median_error", "p90_error", "max_error"},
+                    {0, 0, 0, 100, 100, 100, 100}));
         if (document.contains("time_model_warnings") && document["time_model_warnings"].is_array()) {
             for (const nlohmann::json& warning : document["time_model_warnings"]) {
                 if (warning.is_string()) context.html.note("Profile: " + warning.get<std::string>());
@@ -194,13 +207,12 @@ void addProfileSection(ReportContext& context, const fs::path& file) {
         throw UsageError(error.what());
     }
     context.html.heading(2, "calibrate: " + profile.scene + " (" + file.filename().string() + ")");
-    context.html.paragraph(std::to_string(profile.width) + "x" + std::to_string(profile.height) + " on " +
-                           profile.glRenderer + ", " + profile.machine.cpuModel + " (" +
-                           std::to_string(profile.machine.cores) + " threads), " + profile.created + "; " +
-                           std::to_string(profile.samples.size()) + " samples from " +
-                           std::to_string(profile.viewpoints) + " viewpoints (" +
-                           std::to_string(profile.heldOutViewpoints) + " held out), clock " + profile.timing.clock +
-                           ", default model " + profile.defaultModel + ".");
+    context.html.paragraph(
+        std::to_string(profile.width) + "x" + std::to_string(profile.height) + " on " + profile.glRenderer + ", " +
+        profile.machine.cpuModel + " (" + std::to_string(profile.machine.cores) + " threads), " + profile.created +
+        "; " + std::to_string(profile.samples.size()) + " samples from " + std::to_string(profile.viewpoints) +
+        " viewpoints (" + std::to_string(profile.heldOutViewpoints) + " held out), clock " + profile.timing.clock +
+        ", default model " + profile.defaultModel + ".");
     std::vector<std::vector<std::string>> rows;
     std::ostringstream errors;
     errors << "# model held_out_mean held_out_median held_out_p90 fit_mean (percent)\n";
@@ -210,22 +222,24 @@ void addProfileSection(ReportContext& context, const fs::path& file) {
             continue;
         }
         const timemodel::ErrorStats& h = model.heldOutErrors;
-        rows.push_back({model.name, std::to_string(h.count), formatNumber(100 * h.mean, 3), formatNumber(100 * h.median, 3),
-                        formatNumber(100 * h.p90, 3), formatNumber(100 * h.max, 3), formatNumber(100 * model.fitErrors.mean, 3),
-                        formatNumber(model.fit.rmsResidualMs, 3)});
+        rows.push_back({model.name, std::to_string(h.count), formatNumber(100 * h.mean, 3),
+                        formatNumber(100 * h.median, 3), formatNumber(100 * h.p90, 3), formatNumber(100 * h.max, 3),
+                        formatNumber(100 * model.fitErrors.mean, 3), formatNumber(model.fit.rmsResidualMs, 3)});
         errors << model.name << ' ' << 100 * h.mean << ' ' << 100 * h.median << ' ' << 100 * h.p90 << ' '
                << 100 * model.fitErrors.mean << '\n';
     }
-    context.html.table({"model", "held-out samples", "mean %", "median %", "p90 %", "max %", "fit mean %", "fit RMS ms"}, rows);
+    context.html.table(
+        {"model", "held-out samples", "mean %", "median %", "p90 %", "max %", "fit mean %", "fit RMS ms"}, rows);
     PlotSpec bars;
     bars.name = context.prefix + "profile_errors";
     bars.title = "Relative error |t_act − t_est| / t_act per time model";
     bars.data = {{bars.name + ".dat", errors.str()}};
-    bars.script = "set style data histogram\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
-                  "set ylabel 'error (%)'\nset yrange [0:*]\nset key top left\nplot '" + bars.name +
-                  ".dat' using 2:xtic(1) lc rgb '" + seriesColor(0) + "' title 'held-out mean', '' using 3 lc rgb '" +
-                  seriesColor(2) + "' title 'held-out median', '' using 4 lc rgb '" + seriesColor(1) +
-                  "' title 'held-out p90', '' using 5 lc rgb '" + seriesColor(5) + "' title 'fit mean'\n";
+    bars.script =
+        "set style data histogram\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
+        "set ylabel 'error (%)'\nset yrange [0:*]\nset key top left\nplot '" +
+        bars.name + ".dat' using 2:xtic(1) lc rgb '" + seriesColor(0) + "' title 'held-out mean', '' using 3 lc rgb '" +
+        seriesColor(2) + "' title 'held-out median', '' using 4 lc rgb '" + seriesColor(1) +
+        "' title 'held-out p90', '' using 5 lc rgb '" + seriesColor(5) + "' title 'fit mean'\n";
     bars.height = 360;
     context.plot(bars, "Held-out samples come from viewpoints that were never fitted.");
     if (profile.samples.empty()) return;
@@ -246,8 +260,8 @@ void addProfileSection(ReportContext& context, const fs::path& file) {
         }
         scatter << "\n\n";
         plots << ", " << (block == 0 ? "'" + scatterName + ".dat'" : std::string("''")) << " index " << block
-              << " using 1:($3 > 0.5 ? $2 : 1/0) with points pt 7 ps 0.8 lc rgb '"
-              << seriesColor(block) << "' title '" << result.name << " (held out)', '' index " << block
+              << " using 1:($3 > 0.5 ? $2 : 1/0) with points pt 7 ps 0.8 lc rgb '" << seriesColor(block) << "' title '"
+              << result.name << " (held out)', '' index " << block
               << " using 1:($3 > 0.5 ? 1/0 : $2) with points pt 6 ps 0.7 lc rgb '" << seriesColor(block) << "' title '"
               << result.name << " (fitted)'";
         ++block;
@@ -256,9 +270,12 @@ void addProfileSection(ReportContext& context, const fs::path& file) {
     spec.name = scatterName;
     spec.title = "Predicted against measured frame time";
     spec.data = {{spec.name + ".dat", scatter.str()}};
-    spec.script = "set xlabel 'measured (ms)'\nset ylabel 'predicted (ms)'\nset xrange [0:" + formatNumber(largest * 1.05) +
-                  "]\nset yrange [0:" + formatNumber(largest * 1.05) + "]\nset size square\nset key outside right\n"
-                  "plot x with lines dt 2 lc rgb '#555555' title 'exact'" + plots.str() + "\n";
+    spec.script =
+        "set xlabel 'measured (ms)'\nset ylabel 'predicted (ms)'\nset xrange [0:" + formatNumber(largest * 1.05) +
+        "]\nset yrange [0:" + formatNumber(largest * 1.05) +
+        "]\nset size square\nset key outside right\n"
+        "plot x with lines dt 2 lc rgb '#555555' title 'exact'" +
+        plots.str() + "\n";
     spec.width = 760;
     spec.height = 520;
     context.plot(spec, "Every calibration sample; points on the diagonal are predicted exactly.");

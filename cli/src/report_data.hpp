@@ -2,10 +2,9 @@
 // with errors that name the file, the line and the column (they come from outside).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace lodopt::cli {
 

@@ -15,12 +15,23 @@ std::string escapeHtml(std::string_view text) {
     out.reserve(text.size());
     for (char c : text) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&#39;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&#39;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -71,14 +82,18 @@ std::string dataUriOf(const std::string& path, const std::vector<std::uint8_t>& 
     std::string type = "image/png";
     const std::size_t dot = path.rfind('.');
     const std::string extension = dot == std::string::npos ? "" : path.substr(dot + 1);
-    if (extension == "svg") type = "image/svg+xml";
-    else if (extension == "jpg" || extension == "jpeg") type = "image/jpeg";
+    if (extension == "svg")
+        type = "image/svg+xml";
+    else if (extension == "jpg" || extension == "jpeg")
+        type = "image/jpeg";
     return "data:" + type + ";base64," + base64Encode(bytes);
 }
 
 }  // namespace
 
-std::string dataUri(const std::string& path) { return dataUriOf(path, readBytes(path)); }
+std::string dataUri(const std::string& path) {
+    return dataUriOf(path, readBytes(path));
+}
 
 std::string formatNumber(double value, int digits) {
     if (std::isnan(value)) return "–";
@@ -124,9 +139,12 @@ pre { background: #f1f3f8; padding: 8px; overflow-x: auto; font-size: 0.82em; }
 std::string anchorOf(const std::string& text, std::set<std::string>& used) {
     std::string anchor;
     for (char c : text) {
-        if ((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9')) anchor += c;
-        else if (c >= 'A' && c <= 'Z') anchor += char(c - 'A' + 'a');
-        else if (!anchor.empty() && anchor.back() != '-') anchor += '-';
+        if ((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9'))
+            anchor += c;
+        else if (c >= 'A' && c <= 'Z')
+            anchor += char(c - 'A' + 'a');
+        else if (!anchor.empty() && anchor.back() != '-')
+            anchor += '-';
     }
     while (!anchor.empty() && anchor.back() == '-') anchor.pop_back();
     if (anchor.empty()) anchor = "section";
@@ -157,9 +175,13 @@ void HtmlReport::heading(int level, const std::string& text) {
              std::to_string(clamped) + ">\n";
 }
 
-void HtmlReport::paragraph(const std::string& text) { mBody += "<p>" + escapeHtml(text) + "</p>\n"; }
+void HtmlReport::paragraph(const std::string& text) {
+    mBody += "<p>" + escapeHtml(text) + "</p>\n";
+}
 
-void HtmlReport::note(const std::string& text) { mBody += "<div class=\"note\">" + escapeHtml(text) + "</div>\n"; }
+void HtmlReport::note(const std::string& text) {
+    mBody += "<div class=\"note\">" + escapeHtml(text) + "</div>\n";
+}
 
 void HtmlReport::table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
     std::string html = "<table><thead><tr>";
@@ -218,16 +240,20 @@ void HtmlReport::details(const std::string& summary, const std::string& text) {
     mBody += "<details><summary>" + escapeHtml(summary) + "</summary><pre>" + escapeHtml(text) + "</pre></details>\n";
 }
 
-void HtmlReport::raw(const std::string& html) { mBody += html; }
+void HtmlReport::raw(const std::string& html) {
+    mBody += html;
+}
 
 std::string HtmlReport::finish() const {
-    std::string page = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-                       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
-                       escapeHtml(mTitle) + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" +
-                       escapeHtml(mTitle) + "</h1>\n";
+    std::string page =
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" +
+        escapeHtml(mTitle) + "</title>\n<style>" + kStyle + "</style>\n</head>\n<body>\n<h1>" + escapeHtml(mTitle) +
+        "</h1>\n";
     if (mContents.size() > 1) {
         page += "<nav>";
-        for (const auto& [anchor, text] : mContents) page += "<a href=\"#" + anchor + "\">" + escapeHtml(text) + "</a> ";
+        for (const auto& [anchor, text] : mContents)
+            page += "<a href=\"#" + anchor + "\">" + escapeHtml(text) + "</a> ";
         page += "</nav>\n";
     }
     return page + mBody + "</body>\n</html>\n";

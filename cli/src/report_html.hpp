@@ -24,9 +24,9 @@ std::string dataUri(const std::string& path);
 
 // One picture in a row of pictures.
 struct ReportImage {
-    std::string path;     // PNG/SVG file to embed; empty = show `note` instead
-    std::string caption;  // plain text under the picture
-    std::string note;     // shown in place of the picture when `path` is empty or unreadable
+    std::string path;      // PNG/SVG file to embed; empty = show `note` instead
+    std::string caption;   // plain text under the picture
+    std::string note;      // shown in place of the picture when `path` is empty or unreadable
     int displayWidth = 0;  // CSS pixels (0 = natural size, capped at the page width); a picture
                            // shown larger than it is is scaled without smoothing (pixels stay crisp)
     // Optional colour scale under the caption: a CSS linear-gradient stop list and the values
@@ -66,7 +66,7 @@ private:
     std::string mTitle;
     std::string mBody;
     std::vector<std::pair<std::string, std::string>> mContents;  // anchor, text
-    std::set<std::string> mAnchors;                               // every id used so far
+    std::set<std::string> mAnchors;                              // every id used so far
     int mEmbeddedImages = 0;
 };
 

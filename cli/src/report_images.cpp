@@ -51,8 +51,12 @@ renderer::Frame blankFrame(int width, int height) {
 
 }  // namespace
 
-std::string magmaCss() { return css(kMagma); }
-std::string infernoCss() { return css(kInferno); }
+std::string magmaCss() {
+    return css(kMagma);
+}
+std::string infernoCss() {
+    return css(kInferno);
+}
 
 renderer::Frame loadRgbaImage(const std::string& path) {
     renderer::LoadedImage image;
@@ -111,7 +115,8 @@ DifferenceMaps differenceMaps(const renderer::Frame& candidate, const renderer::
     std::size_t changed = 0;
     for (std::size_t i = 0; i < difference.size(); ++i) {
         int largest = 0;
-        for (int c = 0; c < 3; ++c) largest = std::max(largest, std::abs(int(candidate.rgba[i * 4 + c]) - int(reference.rgba[i * 4 + c])));
+        for (int c = 0; c < 3; ++c)
+            largest = std::max(largest, std::abs(int(candidate.rgba[i * 4 + c]) - int(reference.rgba[i * 4 + c])));
         difference[i] = largest;
         maps.largestDifference = std::max(maps.largestDifference, largest);
         changed += largest > 0;

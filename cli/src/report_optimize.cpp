@@ -24,7 +24,7 @@ constexpr std::size_t kLevelsPlottedPerObject = 60;
 // Renders narrower than this are shown scaled up (without smoothing) so they stay readable.
 constexpr int kSmallImage = 256;
 // Wider renders are shown at this width (the files keep their size).
-constexpr int kLargeImage = 360;
+constexpr int kLargeImage = 340;
 
 struct SceneFacts {
     std::vector<std::string> names;  // object order
@@ -74,7 +74,8 @@ OptimizeOptions optionsOf(const nlohmann::json& result, const fs::path& folder, 
                 }
             }
             if (options.profile.empty()) {
-                throw UsageError("the device profile '" + source + "' that result.json names is not found here; pass "
+                throw UsageError("the device profile '" + source +
+                                 "' that result.json names is not found here; pass "
                                  "--profile FILE (or --baseline none)");
             }
         }
@@ -113,8 +114,8 @@ Baseline runBaseline(const nlohmann::json& result, const fs::path& folder, const
 SceneFacts loadSceneFacts(const nlohmann::json& result) {
     SceneFacts facts;
     try {
-        const scenes::Scene scene =
-            scenes::loadScene(jsonText(result, "scene", scenes::kDefaultSceneName), std::uint32_t(jsonNumber(result, "seed", 1)));
+        const scenes::Scene scene = scenes::loadScene(jsonText(result, "scene", scenes::kDefaultSceneName),
+                                                      std::uint32_t(jsonNumber(result, "seed", 1)));
         for (const scenes::Object& object : scene.objects) {
             facts.names.push_back(object.name);
             facts.levelCounts.push_back(int(object.levels.size()));
@@ -141,15 +142,16 @@ void addFacts(ReportContext& context, const nlohmann::json& result, const Baseli
     };
     std::vector<std::vector<std::string>> rows = {
         {"fitness (full render)", fixed(jsonNumber(result, "fitness", NAN), 4)},
-        {"SSIM / boundary / information fidelity",
-         fixed(fidelity("ssim"), 4) + " / " + fixed(fidelity("boundary_entropy"), 4) + " / " +
-             fixed(fidelity("information_entropy"), 4)},
+        {"SSIM / boundary / information fidelity", fixed(fidelity("ssim"), 4) + " / " +
+                                                       fixed(fidelity("boundary_entropy"), 4) + " / " +
+                                                       fixed(fidelity("information_entropy"), 4)},
         {"precision / recall",
          fixed(jsonNumber(result, "precision", NAN), 4) + " / " + fixed(jsonNumber(result, "recall", NAN), 4)},
-        {"predicted / budget (ms)", fixed(jsonNumber(result, "predicted_ms", NAN), 2) + " / " +
-                                        fixed(jsonNumber(result, "budget_ms", NAN), 2)},
+        {"predicted / budget (ms)",
+         fixed(jsonNumber(result, "predicted_ms", NAN), 2) + " / " + fixed(jsonNumber(result, "budget_ms", NAN), 2)},
         {"time model", jsonText(result, "time_model", "–")},
-        {"evaluations (cache hits)", jsonText(result, "evaluations", "–") + " (" + jsonText(result, "cache_hits", "–") + ")"},
+        {"evaluations (cache hits)",
+         jsonText(result, "evaluations", "–") + " (" + jsonText(result, "cache_hits", "–") + ")"},
         {"iterations, stop", jsonText(result, "iterations", "–") + ", " + jsonText(result, "stop_reason", "–")},
         {"wall time (setup + search, s)", fixed(jsonNumber(result, "wall_seconds", NAN), 3) + " (" +
                                               fixed(jsonNumber(result, "setup_seconds", NAN), 3) + " + " +
@@ -183,9 +185,10 @@ void addImages(ReportContext& context, const fs::path& folder, const nlohmann::j
     const int display = reference.width < kSmallImage ? kSmallImage : std::min(reference.width, kLargeImage);
     std::vector<ReportImage> pictures = {
         makeImage(referencePath.string(), "Reference: every object at its finest level", "", display),
-        makeImage(optimizedPath.string(), "Optimized (" + jsonText(result, "algorithm", "?") + "): fitness " +
-                                              fixed(jsonNumber(result, "fitness", NAN), 4) + ", " +
-                                              fixed(jsonNumber(result, "predicted_ms", NAN), 2) + " ms predicted",
+        makeImage(optimizedPath.string(),
+                  "Optimized (" + jsonText(result, "algorithm", "?") + "): fitness " +
+                      fixed(jsonNumber(result, "fitness", NAN), 4) + ", " +
+                      fixed(jsonNumber(result, "predicted_ms", NAN), 2) + " ms predicted",
                   "", display),
     };
     if (baseline.image.width > 0) {
@@ -199,19 +202,19 @@ void addImages(ReportContext& context, const fs::path& folder, const nlohmann::j
     } else if (!baseline.note.empty()) {
         pictures.push_back(makeImage("", "Baseline (" + baselineName + ")", baseline.note));
     }
-    ReportImage ssimImage = makeImage(ssimPath,
-                                      "SSIM map, optimized vs reference (mean " + fixed(maps.meanSsim, 4) +
-                                          "; the gray border has no full window)",
-                                      "", display);
+    ReportImage ssimImage = makeImage(
+        ssimPath,
+        "SSIM map, optimized vs reference (mean " + fixed(maps.meanSsim, 4) + "; the gray border has no full window)",
+        "", display);
     ssimImage.legendGradient = magmaCss();
     ssimImage.legendLow = fixed(maps.ssimLow, 2);
     ssimImage.legendHigh = "1";
-    ReportImage differenceImage = makeImage(differencePath,
-                                            "Difference heat map: largest |optimized − reference| over R, G, B; " +
-                                                formatNumber(100.0 * maps.changedShare, 2) +
-                                                "% of pixels differ, at most " +
-                                                std::to_string(maps.largestDifference) + " levels",
-                                            "", display);
+    ReportImage differenceImage =
+        makeImage(differencePath,
+                  "Difference heat map: largest |optimized − reference| over R, G, B; " +
+                      formatNumber(100.0 * maps.changedShare, 2) + "% of pixels differ, at most " +
+                      std::to_string(maps.largestDifference) + " levels",
+                  "", display);
     differenceImage.legendGradient = infernoCss();
     differenceImage.legendLow = "0";
     differenceImage.legendHigh = std::to_string(maps.differenceHigh);
@@ -219,14 +222,15 @@ void addImages(ReportContext& context, const fs::path& folder, const nlohmann::j
     context.html.images({ssimImage, differenceImage});
 }
 
-void addLevels(ReportContext& context, const nlohmann::json& result, const SceneFacts& facts,
-               const Baseline& baseline, const std::string& baselineName) {
+void addLevels(ReportContext& context, const nlohmann::json& result, const SceneFacts& facts, const Baseline& baseline,
+               const std::string& baselineName) {
     std::vector<std::string> names;
     std::vector<int> chosen;
     if (result.contains("combination") && result["combination"].is_array() &&
         result["combination"].size() == facts.names.size()) {
         names = facts.names;
-        for (const nlohmann::json& level : result["combination"]) chosen.push_back(level.is_number_integer() ? level.get<int>() : -1);
+        for (const nlohmann::json& level : result["combination"])
+            chosen.push_back(level.is_number_integer() ? level.get<int>() : -1);
     } else if (result.contains("levels") && result["levels"].is_object()) {
         for (auto it = result["levels"].begin(); it != result["levels"].end(); ++it) {
             names.push_back(it.key());
@@ -248,7 +252,7 @@ void addLevels(ReportContext& context, const nlohmann::json& result, const Scene
         if (withCounts) row.push_back(std::to_string(levels));
         rows.push_back(row);
         maxLevel = std::max({maxLevel, chosen[o], withBaseline ? baseline.levels[o] : 0, levels - 1});
-        data << o << " \"" << names[o] << "\" " << chosen[o] << ' '
+        data << o << ' ' << gnuplotDataField(names[o]) << ' ' << chosen[o] << ' '
              << (withBaseline ? std::to_string(baseline.levels[o]) : "NaN") << ' ' << (withCounts ? levels : 0) << '\n';
     }
     std::vector<std::string> header = {"object", "optimized level"};
@@ -285,7 +289,7 @@ void addLevels(ReportContext& context, const nlohmann::json& result, const Scene
         spec.title = "Objects per level (" + std::to_string(names.size()) + " objects; -1 = not drawn)";
         script << "set style data histogram\nset style histogram clustered gap 1\n"
                << "set style fill solid 0.85 border -1\nset xlabel 'level (0 = finest)'\nset ylabel 'objects'\n"
-               << "set yrange [0:*]\n"
+               << "set yrange [0:*]\nset key top left\n"
                << "plot '" << spec.name << "_histogram.dat' using 2:xtic(1) lc rgb '" << seriesColor(0)
                << "' title 'optimized'";
         if (withBaseline) script << ", '' using 3 lc rgb '" << seriesColor(1) << "' title '" << baselineName << "'";
@@ -327,7 +331,8 @@ void addCurve(ReportContext& context, const fs::path& curvePath) {
     spec.title = "Fitness against evaluations";
     spec.data = {{spec.name + ".dat", data.str()}};
     std::ostringstream script;
-    script << "set xlabel 'evaluations (renders)'\nset ylabel 'fitness'\nset key below\n";
+    script << "set xlabel 'evaluations (renders)'\nset ylabel 'fitness'\n"
+           << "set key outside top center horizontal maxrows 1 samplen 2\n";
     if (predicted) script << "set y2label 'predicted ms of the best'\nset y2tics\nset ytics nomirror\n";
     script << "plot '" << spec.name << ".dat' using 1:2 with steps lw 2 lc rgb '" << seriesColor(0)
            << "' title 'best so far', '' using 1:3 with linespoints pt 7 ps 0.6 lc rgb '" << seriesColor(4)

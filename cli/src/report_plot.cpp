@@ -1,14 +1,14 @@
 #include "report_plot.hpp"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "interrupt.hpp"
 #include "scenes/atomic_file.hpp"
@@ -52,8 +52,8 @@ std::string firstLine(const std::string& text) {
 
 std::string seriesColor(int index) {
     // Okabe & Ito's colour-blind-safe palette (black last), then darker variants.
-    static const char* kColors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9",
-                                    "#8C6D1F", "#5B3A8E", "#2F4F4F", "#000000"};
+    static const char* kColors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00",
+                                    "#56B4E9", "#8C6D1F", "#5B3A8E", "#2F4F4F", "#000000"};
     constexpr int kCount = int(sizeof(kColors) / sizeof(kColors[0]));
     return kColors[((index % kCount) + kCount) % kCount];
 }
@@ -61,10 +61,18 @@ std::string seriesColor(int index) {
 std::string gnuplotString(const std::string& text) {
     std::string out = "'";
     for (char c : text) {
-        if (c == '\'') out += "''";
-        else if (c != '\n') out += c;
+        if (c == '\'')
+            out += "''";
+        else if (c != '\n')
+            out += c;
     }
     return out + "'";
+}
+
+std::string gnuplotDataField(const std::string& text) {
+    std::string out = "\"";
+    for (char c : text) out += c == '"' ? '\'' : (static_cast<unsigned char>(c) < 32 ? ' ' : c);
+    return out + "\"";
 }
 
 Plotter::Plotter(std::string directory) : mDirectory(std::move(directory)) {
@@ -104,8 +112,10 @@ PlotOutput Plotter::plot(const PlotSpec& spec) const {
            << "# in this folder to remake " << imageName << " from the data beside it.\n";
     const std::string terminal = mTerminal.empty() ? "pngcairo" : mTerminal;
     script << "set terminal " << terminal << " size " << spec.width << "," << spec.height;
-    if (terminal == "pngcairo") script << " enhanced font 'DejaVu Sans,10' linewidth 1.2";
-    else script << " font 'DejaVuSans,9'";
+    if (terminal == "pngcairo")
+        script << " enhanced font 'DejaVu Sans,10' linewidth 1.2";
+    else
+        script << " font 'DejaVuSans,9'";
     script << "\n"
            << "if (!exists(\"lodopt_output\")) lodopt_output = " << gnuplotString(imageName) << "\n"
            << "set output lodopt_output\n"
@@ -131,8 +141,8 @@ PlotOutput Plotter::plot(const PlotSpec& spec) const {
     try {
         scenes::writeFileAtomically(imagePath.string(), [&](const std::string& temporary) {
             const std::string command = "cd " + shellQuote(folder.string()) + " && " + shellQuote(mGnuplot) + " -e " +
-                                        shellQuote("lodopt_output=" + gnuplotString(fs::absolute(temporary).string())) + " " +
-                                        shellQuote(spec.name + ".gp");
+                                        shellQuote("lodopt_output=" + gnuplotString(fs::absolute(temporary).string())) +
+                                        " " + shellQuote(spec.name + ".gp");
             const int status = runCaptured(command, log);
             if (status != 0 || !fs::exists(temporary) || fs::file_size(temporary) == 0) {
                 throw std::runtime_error("gnuplot exited with status " + std::to_string(status));

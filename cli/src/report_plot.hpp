@@ -16,14 +16,14 @@
 namespace lodopt::cli {
 
 struct PlotSpec {
-    std::string name;    // file stem in the plot folder, [A-Za-z0-9_-]: name.gp, name.png
-    std::string title;   // shown above the plot (plain text)
+    std::string name;   // file stem in the plot folder, [A-Za-z0-9_-]: name.gp, name.png
+    std::string title;  // shown above the plot (plain text)
     // gnuplot commands after the terminal and output lines; data files are named relative to
     // the plot folder (the script runs there).
     std::string script;
     std::vector<std::pair<std::string, std::string>> data;  // file name in the folder, contents
-    int width = 760;   // pixels
-    int height = 430;  // pixels
+    int width = 760;                                        // pixels
+    int height = 430;                                       // pixels
 };
 
 struct PlotOutput {
@@ -56,7 +56,10 @@ private:
 
 // The n-th series colour as "#rrggbb" (colour-blind-safe palette, cycling).
 std::string seriesColor(int index);
-// `text` as a gnuplot single-quoted string literal.
+// `text` as a gnuplot single-quoted string literal (for titles and labels in scripts).
 std::string gnuplotString(const std::string& text);
+// `text` as one double-quoted field of a gnuplot data file (names from scenes and files may
+// hold anything: quotes become ', control characters spaces).
+std::string gnuplotDataField(const std::string& text);
 
 }  // namespace lodopt::cli

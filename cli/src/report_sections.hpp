@@ -14,9 +14,8 @@
 #pragma once
 
 #include <filesystem>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "report_html.hpp"
 #include "report_plot.hpp"

@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 
 void ReportContext::plot(const PlotSpec& spec, const std::string& caption) const {
     const PlotOutput out = plotter.plot(spec);
-    html.images({makeImage(out.image, caption + (out.made ? " Script: " + fs::path(out.script).filename().string() : ""),
-                           out.note)});
+    html.images({makeImage(
+        out.image, caption + (out.made ? " Script: " + fs::path(out.script).filename().string() : ""), out.note)});
 }
 
 std::vector<std::vector<std::string>> flattenScalars(const nlohmann::json& document) {
@@ -65,7 +65,8 @@ void addCompareCurves(ReportContext& context, const fs::path& curvesPath) {
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
         const std::string& algorithm = table.text(r, "algorithm");
         if (!runs.count(algorithm)) order.push_back(algorithm);
-        runs[algorithm][table.text(r, "seed")].emplace_back(table.number(r, "evaluations"), table.number(r, "best_fitness"));
+        runs[algorithm][table.text(r, "seed")].emplace_back(table.number(r, "evaluations"),
+                                                            table.number(r, "best_fitness"));
     }
     if (order.empty()) return;
     std::ostringstream data;
@@ -105,8 +106,9 @@ void addCompareCurves(ReportContext& context, const fs::path& curvesPath) {
         const std::string color = seriesColor(int(a));
         plots << (a ? ", " : "") << "'" << context.prefix << "compare_curves.dat' index " << block
               << " using 1:3:4 with filledcurves fc rgb '" << color << "' fs transparent solid 0.18 noborder notitle"
-              << ", '' index " << block << " using 1:2 with lines lw 2 lc rgb '" << color << "' title '" << order[a]
-              << " (" << seeds.size() << (seeds.size() == 1 ? " run)'" : " seeds)'");
+              << ", '' index " << block << " using 1:2 with lines lw 2 lc rgb '" << color << "' title "
+              << gnuplotString(order[a] + " (" + std::to_string(seeds.size()) +
+                               (seeds.size() == 1 ? " run)" : " seeds)"));
         ++block;
     }
     script << "plot " << plots.str() << "\n";
@@ -116,8 +118,9 @@ void addCompareCurves(ReportContext& context, const fs::path& curvesPath) {
     spec.data = {{spec.name + ".dat", data.str()}};
     spec.script = script.str();
     spec.height = 480;
-    context.plot(spec, "Each line is the median over seeds of the best fitness found after that many evaluations; "
-                       "the shaded band spans the worst and the best seed (the published GA-PSO vs PSO vs GA figure).");
+    context.plot(spec,
+                 "Each line is the median over seeds of the best fitness found after that many evaluations; "
+                 "the shaded band spans the worst and the best seed (the published GA-PSO vs PSO vs GA figure).");
 }
 
 void addCompareFinal(ReportContext& context, const nlohmann::json& document) {
@@ -127,18 +130,18 @@ void addCompareFinal(ReportContext& context, const nlohmann::json& document) {
     data << "# algorithm median_fitness min_fitness max_fitness median_wall_seconds\n";
     for (const nlohmann::json& row : document["algorithms"]) {
         const std::string name = jsonText(row, "algorithm", "?");
-        rows.push_back({name, jsonText(row, "runs", "–"), formatNumber(jsonNumber(row, "median_fitness", NAN), 5),
-                        formatNumber(jsonNumber(row, "min_fitness", NAN), 5),
-                        formatNumber(jsonNumber(row, "max_fitness", NAN), 5),
-                        formatNumber(jsonNumber(row, "median_evals_to_99pct", NAN), 4),
-                        jsonText(row, "reached_99pct", "–"), formatNumber(jsonNumber(row, "median_wall_seconds", NAN), 3)});
-        data << '"' << name << "\" " << jsonNumber(row, "median_fitness", NAN) << ' '
+        rows.push_back(
+            {name, jsonText(row, "runs", "–"), formatNumber(jsonNumber(row, "median_fitness", NAN), 5),
+             formatNumber(jsonNumber(row, "min_fitness", NAN), 5), formatNumber(jsonNumber(row, "max_fitness", NAN), 5),
+             formatNumber(jsonNumber(row, "median_evals_to_99pct", NAN), 4), jsonText(row, "reached_99pct", "–"),
+             formatNumber(jsonNumber(row, "median_wall_seconds", NAN), 3)});
+        data << gnuplotDataField(name) << ' ' << jsonNumber(row, "median_fitness", NAN) << ' '
              << jsonNumber(row, "min_fitness", NAN) << ' ' << jsonNumber(row, "max_fitness", NAN) << ' '
              << jsonNumber(row, "median_wall_seconds", NAN) << '\n';
     }
-    context.html.table({"algorithm", "runs", "median fitness", "min", "max", "median evals to 99%", "reached 99%",
-                        "median wall s"},
-                       rows);
+    context.html.table(
+        {"algorithm", "runs", "median fitness", "min", "max", "median evals to 99%", "reached 99%", "median wall s"},
+        rows);
     PlotSpec spec;
     spec.name = context.prefix + "compare_final";
     spec.title = "Final best fitness per algorithm (median, min–max over seeds)";
@@ -158,8 +161,8 @@ void addCompareSection(ReportContext& context, const fs::path& folder) {
     context.html.heading(2, "compare: " + jsonText(document, "scene", "?") + " / " + jsonText(document, "view", "?"));
     context.html.paragraph("From " + folder.string() + ".");
     if (!document.is_null()) {
-        context.html.paragraph(jsonText(document, "scene", "?") + " / " + jsonText(document, "view", "?") + ", budget " +
-                               formatNumber(jsonNumber(document, "budget_ms", NAN)) + " ms, " +
+        context.html.paragraph(jsonText(document, "scene", "?") + " / " + jsonText(document, "view", "?") +
+                               ", budget " + formatNumber(jsonNumber(document, "budget_ms", NAN)) + " ms, " +
                                jsonText(document, "evaluation_budget", "?") + " evaluations per run, " +
                                jsonText(document, "seeds", "?") + " seeds; best fitness any run found " +
                                formatNumber(jsonNumber(document, "best_known_fitness", NAN), 6) + ".");
@@ -238,10 +241,11 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
         for (double v : frames.numbers(name)) top = std::isfinite(v) ? std::max(top, v) : top;
     }
     times.script = "set xlabel 'frame'\nset ylabel 'milliseconds'\nset yrange [0:" +
-                   (top > 0.0 ? formatNumber(top * 1.3, 4) : std::string("*")) + "]\nset key below\nplot " +
-                   plots.str() + "\n";
-    context.plot(times, "Predicted and measured frame time per frame (measured columns appear when schedule ran with "
-                        "--render); the all-finest prediction is cut off where it leaves the axis.");
+                   (top > 0.0 ? formatNumber(top * 1.3, 4) : std::string("*")) +
+                   "]\nset key outside top center horizontal samplen 2\nplot " + plots.str() + "\n";
+    context.plot(times,
+                 "Predicted and measured frame time per frame (measured columns appear when schedule ran with "
+                 "--render); the all-finest prediction is cut off where it leaves the axis.");
 
     // Levels histogram over frames: objects at each level per frame, stacked.
     const std::vector<int> levels = levelColumns(frames);
@@ -265,12 +269,13 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
         histogram.title = "Objects drawn at each level, per frame";
         histogram.data = {{histogram.name + ".dat", stacked.str()}};
         for (std::size_t k = 0; k < levels.size(); ++k) {
-            plot << (k ? ", " : "") << "'" << histogram.name << ".dat' using 1:" << (k == 0 ? "(0)" : "($" + std::to_string(k + 1) + ")")
-                 << ":" << k + 2 << " with filledcurves fc rgb '" << seriesColor(int(k)) << "' fs solid 0.75 title 'level "
-                 << k << "'";
+            plot << (k ? ", " : "") << "'" << histogram.name
+                 << ".dat' using 1:" << (k == 0 ? "(0)" : "($" + std::to_string(k + 1) + ")") << ":" << k + 2
+                 << " with filledcurves fc rgb '" << seriesColor(int(k)) << "' fs solid 0.75 title 'level " << k << "'";
         }
-        histogram.script = "set xlabel 'frame'\nset ylabel 'objects drawn'\nset yrange [0:*]\nset key outside right\nplot " +
-                           plot.str() + "\n";
+        histogram.script =
+            "set xlabel 'frame'\nset ylabel 'objects drawn'\nset yrange [0:*]\nset key outside right\nplot " +
+            plot.str() + "\n";
         context.plot(histogram, "Stacked: how many drawn objects sit at each level (0 = finest) in every frame.");
         const double all = [&] {
             double s = 0.0;
@@ -298,7 +303,9 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
         spec.name = context.prefix + "schedule_decision";
         spec.title = "Decision time and level switches per frame";
         spec.data = {{spec.name + ".dat", decision.str()}};
-        spec.script = "set xlabel 'frame'\nset ylabel 'decision time (µs)'\nset yrange [0:*]\nset key top right\n";
+        spec.script =
+            "set xlabel 'frame'\nset ylabel 'decision time (µs)'\nset yrange [0:*]\nset key outside top center "
+            "horizontal samplen 2\n";
         if (switches) spec.script += "set y2label 'switches'\nset y2range [0:*]\nset y2tics\nset ytics nomirror\n";
         spec.script += "plot '" + spec.name + ".dat' using 1:2 with lines lw 1.4 lc rgb '" + seriesColor(0) +
                        "' title 'decision time'";
@@ -326,7 +333,8 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
         spec.data = {{spec.name + ".dat", fitness.str()}};
         spec.script = "set xlabel 'frame'\nset ylabel 'fitness'\nset key bottom right\nplot '" + spec.name +
                       ".dat' using 1:2 with lines lw 1.6 lc rgb '" + seriesColor(0) + "' title 'scheduled'";
-        if (baseline) spec.script += ", '' using 1:3 with lines lw 1.2 lc rgb '" + seriesColor(1) + "' title 'unscheduled'";
+        if (baseline)
+            spec.script += ", '' using 1:3 with lines lw 1.2 lc rgb '" + seriesColor(1) + "' title 'unscheduled'";
         spec.script += "\n";
         spec.height = 340;
         context.plot(spec, "Fused fitness of every frame against its full-detail reference.");
@@ -356,7 +364,7 @@ void addTuneSection(ReportContext& context, const fs::path& file, const nlohmann
     for (const nlohmann::json& view : tuning["per_view"]) {
         const bool heldOut = view.value("held_out", false);
         const std::string name = jsonText(view, "view", "?") + (heldOut ? " (held out)" : "");
-        data << '"' << name << "\" " << jsonNumber(view, "default_fraction", NAN) << ' '
+        data << gnuplotDataField(name) << ' ' << jsonNumber(view, "default_fraction", NAN) << ' '
              << jsonNumber(view, "tuned_fraction", NAN) << '\n';
         rows.push_back({name, formatNumber(jsonNumber(view, "optimizer_fitness", NAN)),
                         formatNumber(jsonNumber(view, "default_fraction", NAN)),
@@ -367,10 +375,12 @@ void addTuneSection(ReportContext& context, const fs::path& file, const nlohmann
     spec.name = context.prefix + "tune_views";
     spec.title = "Scheduler fitness as a fraction of the optimizer's, per view";
     spec.data = {{spec.name + ".dat", data.str()}};
-    spec.script = "set style data histogram\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
-                  "set ylabel 'fraction of the optimizer fitness'\nset yrange [0:*]\nset xtics rotate by -35\n"
-                  "set key below\nplot '" + spec.name + ".dat' using 2:xtic(1) lc rgb '" + seriesColor(1) +
-                  "' title 'published defaults', '' using 3 lc rgb '" + seriesColor(0) + "' title 'tuned'\n";
+    spec.script =
+        "set style data histogram\nset style histogram clustered gap 1\nset style fill solid 0.85 border -1\n"
+        "set ylabel 'fraction of the optimizer fitness'\nset yrange [0:*]\nset xtics rotate by -35\n"
+        "set key outside top center horizontal samplen 2\nplot '" +
+        spec.name + ".dat' using 2:xtic(1) lc rgb '" + seriesColor(1) +
+        "' title 'published defaults', '' using 3 lc rgb '" + seriesColor(0) + "' title 'tuned'\n";
     context.plot(spec, "Per view: the scheduler's fitness divided by the optimizer's on the same view.");
     context.html.table({"view", "optimizer fitness", "default fraction", "tuned fraction", "tuned predicted ms"}, rows);
 }

@@ -62,7 +62,8 @@ scenes::Camera cameraFromJson(const nlohmann::json& json, const std::string& whe
     c.nearPlane = floatOf(json, "near", where, c.nearPlane);
     c.farPlane = floatOf(json, "far", where, c.farPlane);
     if (c.position == c.target) throw UsageError(where + ": position and target coincide");
-    if (!(c.fovYDegrees > 0.0f && c.fovYDegrees < 180.0f)) throw UsageError(where + ".fov_y_degrees: must be in (0, 180)");
+    if (!(c.fovYDegrees > 0.0f && c.fovYDegrees < 180.0f))
+        throw UsageError(where + ".fov_y_degrees: must be in (0, 180)");
     if (!(c.nearPlane > 0.0f && c.farPlane > c.nearPlane)) throw UsageError(where + ": needs 0 < near < far");
     return c;
 }
@@ -91,7 +92,7 @@ scenes::CameraPath loadCameraPath(const scenes::Scene& scene, const std::string&
     if (json.is_discarded() || !json.is_object()) throw UsageError(nameOrFile + ": not a JSON object");
     scenes::CameraPath path;
     path.name = json.contains("name") && json["name"].is_string() ? json["name"].get<std::string>()
-                                                                   : std::filesystem::path(nameOrFile).stem().string();
+                                                                  : std::filesystem::path(nameOrFile).stem().string();
     path.framesPerSecond = floatOf(json, "frames_per_second", nameOrFile, 30.0f);
     if (!(path.framesPerSecond > 0.0f)) throw UsageError(nameOrFile + ".frames_per_second: must be > 0");
     if (!json.contains("frames") || !json["frames"].is_array() || json["frames"].empty()) {

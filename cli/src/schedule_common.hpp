@@ -8,10 +8,9 @@
 // ("up", "fov_y_degrees", "near" and "far" optional, with the defaults shown).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "scenes/scene.hpp"
 #include "scheduler/scheduler.hpp"

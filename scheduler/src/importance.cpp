@@ -56,15 +56,13 @@ double importanceDenominator(const ObjectView& view, const ImportanceCoefficient
     return d;
 }
 
-double importance(const ObjectView& view, double benchmarkDenominator, const ImportanceCoefficients& c,
-                  double weight) {
+double importance(const ObjectView& view, double benchmarkDenominator, const ImportanceCoefficients& c, double weight) {
     assert(benchmarkDenominator > 0.0 && weight > 0.0);
     const double d = importanceDenominator(view, c);
     return d > 0.0 ? weight * benchmarkDenominator / d : std::numeric_limits<double>::infinity();
 }
 
-double importance(const ObjectView& view, const ObjectView& benchmark, const ImportanceCoefficients& c,
-                  double weight) {
+double importance(const ObjectView& view, const ObjectView& benchmark, const ImportanceCoefficients& c, double weight) {
     return importance(view, importanceDenominator(benchmark, c), c, weight);
 }
 

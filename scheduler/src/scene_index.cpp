@@ -14,7 +14,9 @@ namespace lodopt::scheduler {
 using timemodel::FrameFeatures;
 using timemodel::kFeatureCount;
 
-const char* toString(FeatureMode mode) { return mode == FeatureMode::Exact ? "exact" : "bounds"; }
+const char* toString(FeatureMode mode) {
+    return mode == FeatureMode::Exact ? "exact" : "bounds";
+}
 
 Frustum Frustum::fromViewProjection(const glm::mat4& m) {
     // Rows of the matrix (glm is column-major: m[column][row]).
@@ -56,8 +58,11 @@ template <typename Distance>
 bool clipSegment(glm::vec4& a, glm::vec4& b, Distance distance) {
     const float da = distance(a), db = distance(b);
     if (da < 0.0f && db < 0.0f) return false;
-    if (da < 0.0f) a = a + (b - a) * (da / (da - db));
-    else if (db < 0.0f) b = b + (a - b) * (db / (db - da));
+    if (da < 0.0f) {
+        a = a + (b - a) * (da / (da - db));
+    } else if (db < 0.0f) {
+        b = b + (a - b) * (db / (db - da));
+    }
     return true;
 }
 
@@ -130,7 +135,7 @@ namespace {
 
 // Closer than this many bounding radii, a box's screen rectangle says little about which part
 // of the object is in view (a terrain under the eye), so the object's proxy is measured.
-constexpr float kProxyWithinRadii = 3.0f;
+constexpr float kProxyWithinRadii = 1.5f;
 constexpr std::size_t kProxyTriangles = 256;
 
 // `object` with every level's triangles thinned to an even sample of at most kProxyTriangles.
@@ -145,9 +150,24 @@ scenes::Object proxyOf(const scenes::Object& object) {
             std::vector<std::uint32_t> kept;
             for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3, ++triangle) {
                 if (triangle % stride != 0) continue;
-                kept.insert(kept.end(), mesh.indices.begin() + std::ptrdiff_t(i), mesh.indices.begin() + std::ptrdiff_t(i + 3));
+                kept.insert(kept.end(), mesh.indices.begin() + std::ptrdiff_t(i),
+                            mesh.indices.begin() + std::ptrdiff_t(i + 3));
             }
-            mesh.indices = std::move(kept);
+            // Keep only the vertices the sample uses: the tables transform every vertex.
+            std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);
+            scenes::Mesh compact;
+            compact.material = mesh.material;
+            for (std::uint32_t& index : kept) {
+                if (remap[index] == UINT32_MAX) {
+                    remap[index] = std::uint32_t(compact.positions.size());
+                    compact.positions.push_back(mesh.positions[index]);
+                    if (index < mesh.normals.size()) compact.normals.push_back(mesh.normals[index]);
+                    if (index < mesh.uvs.size()) compact.uvs.push_back(mesh.uvs[index]);
+                }
+                index = remap[index];
+            }
+            compact.indices = std::move(kept);
+            mesh = std::move(compact);
         }
     }
     return proxy;
@@ -203,8 +223,8 @@ void SceneIndex::measureCanonical() {
         }
     }
     for (int corner = 0; corner < 8; ++corner) {
-        c.directions[d++] = glm::normalize(glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f,
-                                                     corner & 4 ? 1.0f : -1.0f));
+        c.directions[d++] =
+            glm::normalize(glm::vec3(corner & 1 ? 1.0f : -1.0f, corner & 2 ? 1.0f : -1.0f, corner & 4 ? 1.0f : -1.0f));
     }
     const int levels = totalLevels();
     c.unseen.resize(levels);
@@ -220,7 +240,8 @@ void SceneIndex::measureCanonical() {
     // One object at a time, with the scene's materials and its textures' names and sizes (not
     // their pixels, which would be copied once per object: the time model reads stats only).
     std::vector<scenes::Texture> textureSizes;
-    for (const scenes::Texture& texture : mScene.textures) textureSizes.push_back({texture.name, texture.width, texture.height, {}});
+    for (const scenes::Texture& texture : mScene.textures)
+        textureSizes.push_back({texture.name, texture.width, texture.height, {}});
     c.proxies.resize(std::size_t(objectCount()));
     c.proxyUnseen.resize(std::size_t(levels));
     c.proxyScale.resize(std::size_t(levels));
@@ -258,12 +279,14 @@ void SceneIndex::measureCanonical() {
         // double the set-up time for little: the power a feature scales with is a property of
         // the feature, not of the direction).
         std::vector<FrameFeatures> nearSum(static_cast<std::size_t>(count)), farSum(static_cast<std::size_t>(count));
-        std::vector<double> nearAreaSum(static_cast<std::size_t>(count), 0.0), farAreaSum(static_cast<std::size_t>(count), 0.0);
+        std::vector<double> nearAreaSum(static_cast<std::size_t>(count), 0.0),
+            farAreaSum(static_cast<std::size_t>(count), 0.0);
         std::vector<FrameFeatures> proxySum(static_cast<std::size_t>(count));
         for (int k = 0; k < Canonical::kDirections; ++k) {
             const scenes::Camera nearCamera = cameraAt(c.directions[k], nearDistance);
             const timemodel::FeatureTable nearTable(single, nearCamera, mWidth, mHeight);
-            const glm::mat4 nearVp = scenes::projectionMatrix(nearCamera, float(aspect)) * scenes::viewMatrix(nearCamera);
+            const glm::mat4 nearVp =
+                scenes::projectionMatrix(nearCamera, float(aspect)) * scenes::viewMatrix(nearCamera);
             const bool axis = k < 6;
             std::unique_ptr<timemodel::FeatureTable> farTable, proxyTable;
             glm::mat4 farVp(1.0f);
@@ -316,13 +339,14 @@ void SceneIndex::measureCanonical() {
 
 void SceneIndex::beginFrame(const scenes::Camera& camera, FrameObjects& out) const {
     out.camera = camera;
-    out.viewProjection =
-        scenes::projectionMatrix(camera, float(mWidth) / float(mHeight)) * scenes::viewMatrix(camera);
+    out.viewProjection = scenes::projectionMatrix(camera, float(mWidth) / float(mHeight)) * scenes::viewMatrix(camera);
     out.frustum = Frustum::fromViewProjection(out.viewProjection);
     out.visible.assign(mShapes.size(), 0);
     out.views.resize(mShapes.size());
     out.contributions.resize(std::size_t(totalLevels()));
-    if (mMode == FeatureMode::Exact) out.table = std::make_shared<timemodel::FeatureTable>(mScene, camera, mWidth, mHeight);
+    if (mMode == FeatureMode::Exact) {
+        out.table = std::make_shared<timemodel::FeatureTable>(mScene, camera, mWidth, mHeight);
+    }
 }
 
 bool SceneIndex::observe(int object, FrameObjects& out) const {
@@ -350,7 +374,8 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
             FrameFeatures& f = out.contributions[index];
             const FrameFeatures seen = table.contribution(0, l) - c.proxyUnseen[index];
             f = c.unseen[index];
-            for (std::size_t k = 0; k < kFeatureCount; ++k) f.values[k] += seen.values[k] * c.proxyScale[index].values[k];
+            for (std::size_t k = 0; k < kFeatureCount; ++k)
+                f.values[k] += seen.values[k] * c.proxyScale[index].values[k];
         }
         return true;
     }

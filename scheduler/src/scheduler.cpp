@@ -15,11 +15,14 @@
 
 namespace lodopt::scheduler {
 
-const char* toString(Organisation organisation) { return organisation == Organisation::Tiles ? "tiles" : "flat"; }
+const char* toString(Organisation organisation) {
+    return organisation == Organisation::Tiles ? "tiles" : "flat";
+}
 
 void validateParameters(const SchedulerParameters& p, int objectCount) {
     if (!std::isfinite(p.budgetMs) || p.budgetMs <= 0.0) {
-        throw std::invalid_argument("scheduler: budget = " + std::to_string(p.budgetMs) + " ms, must be finite and > 0");
+        throw std::invalid_argument("scheduler: budget = " + std::to_string(p.budgetMs) +
+                                    " ms, must be finite and > 0");
     }
     validateCoefficients(p.coefficients.importance);
     validateThresholds(p.coefficients.thresholds);
@@ -55,8 +58,9 @@ void validateParameters(const SchedulerParameters& p, int objectCount) {
     const timemodel::FeedbackParameters& f = p.feedback;
     if (!(f.beta > 0.0 && f.beta < 1.0) || !(f.maxRelativeError > 0.0 && f.maxRelativeError <= 1.0) ||
         !(f.maxDrift >= 1.0 && std::isfinite(f.maxDrift))) {
-        throw std::invalid_argument("scheduler: feedback needs 0 < beta < 1, 0 < maxRelativeError <= 1, "
-                                    "1 <= maxDrift < inf");
+        throw std::invalid_argument(
+            "scheduler: feedback needs 0 < beta < 1, 0 < maxRelativeError <= 1, "
+            "1 <= maxDrift < inf");
     }
     if (!(p.coarsestShare > 0.0 && p.coarsestShare <= 1.0)) {
         throw std::invalid_argument("scheduler: coarsestShare = " + std::to_string(p.coarsestShare) +
@@ -132,15 +136,22 @@ const FrameDecision& FrameScheduler::decide(const scenes::Camera& camera, double
     std::fill(mInitial.begin(), mInitial.end(), scenes::kNotDrawn);
 
     mIndex.beginFrame(camera, mFrame);
-    if (mQuadtree) observeTiles();
-    else observeFlat();
+    if (mQuadtree) {
+        observeTiles();
+    } else {
+        observeFlat();
+    }
     computeImportanceAndRanges(timeSeconds);
     // The cheapest frame without dropping: every visible object at its coarsest level.
     timemodel::FrameFeatures minimum = mIndex.frameConstant();
     for (int o : mWork->visible) minimum += contribution(o, mIndex.levelCount(o) - 1);
     d.minimumMs = estimate(minimum);
-    if (mQuadtree) decideTiles();
-    else decideFlat();
+    if (mQuadtree) {
+        decideTiles();
+    } else {
+        decideFlat();
+    }
+    applySwitchControl();
     finishFrame(timeSeconds);
     return d;
 }
@@ -184,11 +195,43 @@ void FrameScheduler::computeImportanceAndRanges(double timeSeconds) {
         LevelRange range{0, levels - 1};
         if (control.enabled && mHavePrevious && mPrevious[o] != scenes::kNotDrawn) {
             range = allowedLevels(mPrevious[o], timeSeconds - mLastSwitchTime[o], x, mIndex.rates(o), control);
-            if (range.finest == range.coarsest && levels > 1) ++mDecision.heldObjects;
         }
         mRange[o] = range;
-        mInitial[o] = std::clamp(distanceLevel(x, c.thresholds.values, levels), range.finest, range.coarsest);
+        mInitial[o] = distanceLevel(x, c.thresholds.values, levels);
     }
+}
+
+void FrameScheduler::sortByImportance(bool increasing) {
+    Work& w = *mWork;
+    w.order.assign(w.visible.begin(), w.visible.end());
+    // Ties by object index so that the decision is deterministic.
+    std::sort(w.order.begin(), w.order.end(), [&](int a, int b) {
+        if (mImportance[a] != mImportance[b])
+            return increasing ? mImportance[a] < mImportance[b] : mImportance[a] > mImportance[b];
+        return a < b;
+    });
+}
+
+double FrameScheduler::lowerToBudget(double ms, bool withinRange) {
+    const Work& w = *mWork;
+    FrameDecision& d = mDecision;
+    const double budget = mParameters.budgetMs;
+    const bool protect = mParameters.protectImportant;
+    // Increasing importance (w.order), objects with I <= 1 first: those with I > 1 only when
+    // lowering every other object as far as allowed was not enough.
+    for (int pass = 0; pass < (protect ? 2 : 1) && ms > budget; ++pass) {
+        for (int o : w.order) {
+            if (ms <= budget) break;
+            if (protect && (mImportance[o] > 1.0) != (pass == 1)) continue;
+            if (d.levels[o] == scenes::kNotDrawn) continue;
+            const int limit = withinRange ? mRange[o].coarsest : mIndex.levelCount(o) - 1;
+            while (ms > budget && d.levels[o] < limit) {
+                setLevel(o, d.levels[o] + 1);
+                ms = estimate(d.features);
+            }
+        }
+    }
+    return ms;
 }
 
 void FrameScheduler::decideFlat() {
@@ -197,14 +240,10 @@ void FrameScheduler::decideFlat() {
     const double budget = mParameters.budgetMs;
     for (int o : w.visible) setLevel(o, mInitial[o]);
     double ms = estimate(d.features);
-    w.order.assign(w.visible.begin(), w.visible.end());
     if (ms <= budget) {
-        // Decreasing importance; ties by object index so the decision is deterministic.
-        std::sort(w.order.begin(), w.order.end(), [&](int a, int b) {
-            return mImportance[a] != mImportance[b] ? mImportance[a] > mImportance[b] : a < b;
-        });
+        sortByImportance(false);
         for (int o : w.order) {
-            while (d.levels[o] > mRange[o].finest) {
+            while (d.levels[o] > 0) {
                 const int level = d.levels[o];
                 w.trial = d.features;
                 w.trial += contribution(o, level - 1);
@@ -216,30 +255,58 @@ void FrameScheduler::decideFlat() {
             }
         }
     } else {
-        std::sort(w.order.begin(), w.order.end(), [&](int a, int b) {
-            return mImportance[a] != mImportance[b] ? mImportance[a] < mImportance[b] : a < b;
-        });
-        const bool protect = mParameters.protectImportant;
-        // Passes a-d of the header: unprotected within range, unprotected beyond, protected
-        // within range, protected beyond.
-        for (int pass = 0; pass < 4 && ms > budget; ++pass) {
-            const bool protectedPass = pass >= 2;
-            if (protectedPass && !protect) break;
-            const bool beyondRange = pass % 2 == 1;
-            for (int o : w.order) {
-                if (ms <= budget) break;
-                const bool important = mImportance[o] > 1.0;
-                if (protect && important != protectedPass) continue;
-                const int limit = beyondRange ? mIndex.levelCount(o) - 1 : mRange[o].coarsest;
-                while (ms > budget && d.levels[o] < limit) {
-                    setLevel(o, d.levels[o] + 1);
-                    ms = estimate(d.features);
-                }
-            }
+        sortByImportance(true);
+        lowerToBudget(ms, false);
+    }
+}
+
+void FrameScheduler::applySwitchControl() {
+    if (!mParameters.switchControl.enabled || !mHavePrevious) return;
+    Work& w = *mWork;
+    FrameDecision& d = mDecision;
+    for (int o : w.visible) {
+        const int previous = mPrevious[o];
+        const int desired = d.levels[o];
+        if (previous == scenes::kNotDrawn || desired == scenes::kNotDrawn || desired == previous) continue;
+        const int allowed = std::clamp(desired, mRange[o].finest, mRange[o].coarsest);
+        if (allowed != desired) {
+            setLevel(o, allowed);
+            ++d.heldObjects;
         }
     }
-    for (int o : w.visible) {
-        if (mImportance[o] > 1.0 && d.levels[o] > mInitial[o]) ++d.protectedLowered;
+    double ms = estimate(d.features);
+    if (ms <= mParameters.budgetMs) {
+        // Budget left (objects held coarser than decided): objects the decision lowered keep
+        // their previous level, or come as close to it as the budget allows, in decreasing
+        // importance. A change avoided is a switch saved.
+        sortByImportance(false);
+        for (int o : w.order) {
+            const int previous = mPrevious[o];
+            if (previous == scenes::kNotDrawn || d.levels[o] == scenes::kNotDrawn) continue;
+            while (d.levels[o] > previous) {
+                const int level = d.levels[o];
+                w.trial = d.features;
+                w.trial += contribution(o, level - 1);
+                w.trial -= contribution(o, level);
+                const double kept = estimate(w.trial);
+                if (kept > mParameters.budgetMs) break;
+                setLevel(o, level - 1);
+                ms = kept;
+            }
+        }
+        return;
+    }
+    // Held objects cost more than the decision wanted: lower in increasing importance, first
+    // as far as the control allows, then beyond it (forced switches).
+    sortByImportance(true);
+    ms = lowerToBudget(ms, true);
+    ms = lowerToBudget(ms, false);
+    if (!mQuadtree) return;
+    // Tiles: as Algorithm 1 would have, leave out the last objects of the tile order.
+    for (auto it = w.visible.rbegin(); it != w.visible.rend() && ms > mParameters.budgetMs; ++it) {
+        if (d.levels[*it] == scenes::kNotDrawn) continue;
+        setLevel(*it, scenes::kNotDrawn);
+        ms = estimate(d.features);
     }
 }
 
@@ -255,6 +322,7 @@ void FrameScheduler::finishFrame(double timeSeconds) {
         ++drawn;
         d.features += contribution(o, level);
         if (level > mRange[o].coarsest || level < mRange[o].finest) ++d.forcedSwitches;
+        if (mImportance[o] > 1.0 && level > mInitial[o]) ++d.protectedLowered;
         if (mHavePrevious && mPrevious[o] != scenes::kNotDrawn && mPrevious[o] != level) {
             ++d.switches;
             mLastSwitchTime[o] = timeSeconds;

@@ -13,8 +13,8 @@ namespace {
 
 void check(bool ok, const char* name, double value, const char* rule) {
     if (!ok) {
-        throw std::invalid_argument(std::string("switch control: ") + name + " = " + std::to_string(value) + ", must be " +
-                                    rule);
+        throw std::invalid_argument(std::string("switch control: ") + name + " = " + std::to_string(value) +
+                                    ", must be " + rule);
     }
 }
 
@@ -31,7 +31,8 @@ void validateSwitchControl(const SwitchControlParameters& p) {
 std::vector<double> simplificationRates(const std::vector<double>& triangles) {
     std::vector<double> rates(triangles.size(), 0.0);
     if (triangles.empty() || triangles[0] <= 0.0) return rates;
-    for (std::size_t l = 0; l < triangles.size(); ++l) rates[l] = std::clamp(1.0 - triangles[l] / triangles[0], 0.0, 1.0);
+    for (std::size_t l = 0; l < triangles.size(); ++l)
+        rates[l] = std::clamp(1.0 - triangles[l] / triangles[0], 0.0, 1.0);
     return rates;
 }
 

@@ -43,7 +43,7 @@ void FrameScheduler::decideTiles() {
     double ms = estimate(d.features);
     int drawn = 0;
     for (int o : w.order) {
-        const int level = mRange[o].coarsest;
+        const int level = mIndex.levelCount(o) - 1;
         w.trial = d.features;
         w.trial += contribution(o, level);
         const double added = estimate(w.trial);
@@ -61,7 +61,7 @@ void FrameScheduler::decideTiles() {
     for (int i = 0; i < end; ++i) {
         if (atCoarsest >= coarsestLimit) break;  // the rest stay coarsest
         const int o = w.order[i];
-        const int target = mInitial[o];  // already within the switch control's range
+        const int target = mInitial[o];
         const std::vector<double>& rates = mIndex.rates(o);
         const double pixels = mFrame.views[o].projectedPixels;
         while (d.levels[o] > target) {
@@ -91,12 +91,12 @@ void FrameScheduler::decideTiles() {
             setLevel(o, level - 1);
             ms = estimate(d.features);
         }
-        if (d.levels[o] == mIndex.levelCount(o) - 1) ++atCoarsest;
+        // Counted only when the budget held it there: an object whose distance level is its
+        // coarsest sits there by choice, and counting it would end the raising after the first
+        // far tiles, with most of the budget unused.
+        if (d.levels[o] == mIndex.levelCount(o) - 1 && target < d.levels[o]) ++atCoarsest;
     }
     (void)ms;
-    for (int o : w.visible) {
-        if (d.levels[o] != scenes::kNotDrawn && mImportance[o] > 1.0 && d.levels[o] > mInitial[o]) ++d.protectedLowered;
-    }
 }
 
 }  // namespace lodopt::scheduler

@@ -10,7 +10,9 @@
 
 namespace lodopt::scheduler {
 
-const char* toString(ImportanceForm form) { return form == ImportanceForm::Extended ? "extended" : "published"; }
+const char* toString(ImportanceForm form) {
+    return form == ImportanceForm::Extended ? "extended" : "published";
+}
 
 namespace {
 

@@ -3,17 +3,16 @@
 // installed); without gnuplot the page is still written; bad input exits with 2. Also the
 // page's building blocks (base64, escaping, CSV reading, difference maps) in-process.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
-#include <unistd.h>
+#include <sstream>
 
 #include "cli_common.hpp"
 #include "report_data.hpp"
@@ -41,7 +40,9 @@ CommandResult runWith(const std::string& environment, const std::string& argumen
     result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return result;
 }
-CommandResult run(const std::string& arguments) { return runWith("", arguments); }
+CommandResult run(const std::string& arguments) {
+    return runWith("", arguments);
+}
 
 std::string readText(const fs::path& path) {
     std::ifstream file(path, std::ios::binary);
@@ -52,7 +53,8 @@ std::string readText(const fs::path& path) {
 
 std::size_t countOf(const std::string& text, const std::string& needle) {
     std::size_t count = 0;
-    for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + needle.size())) ++count;
+    for (std::size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + needle.size()))
+        ++count;
     return count;
 }
 
@@ -72,15 +74,21 @@ protected:
         fs::remove_all(sDir);
         fs::create_directories(sDir);
         sProfile = (sDir / "device.json").string();
-        sSetupOk = run("calibrate --scene harbor --samples 16 --jitter 1 --rounds 1 --repeats 1 --warmup 1 --size 96x96 "
-                       "--seed 3 --quiet --out " + sProfile).exitCode == 0;
+        sSetupOk =
+            run("calibrate --scene harbor --samples 16 --jitter 1 --rounds 1 --repeats 1 --warmup 1 --size 96x96 "
+                "--seed 3 --quiet --out " +
+                sProfile)
+                .exitCode == 0;
         // A generous budget: always feasible whatever this machine's timings were.
         const std::string common = " --size 96x96 --budget-ms 50 --profile " + sProfile + " --quiet ";
         sSetupOk = sSetupOk &&
                    run("optimize --max-evals 30" + common + "--out " + (sDir / "opt").string()).exitCode == 0 &&
                    run("compare --algos gapso,pso --seeds 2 --evals 30" + common + "--out " + (sDir / "cmp").string())
                            .exitCode == 0;
-        sGnuplot = std::system("command -v gnuplot >/dev/null 2>&1") == 0;
+        // As the report decides: LODOPT_GNUPLOT=none turns plotting off, else gnuplot on PATH.
+        const char* configured = std::getenv("LODOPT_GNUPLOT");
+        sGnuplot = configured ? std::string(configured) != "none" && ::access(configured, X_OK) == 0
+                              : std::system("command -v gnuplot >/dev/null 2>&1") == 0;
     }
     static void TearDownTestSuite() { fs::remove_all(sDir); }
 
@@ -157,7 +165,8 @@ TEST_F(ReportCli, ProfilePageListsEveryModel) {
     ASSERT_EQ(result.exitCode, 0);
     const std::string html = readText(sDir / "device_report.html");
     EXPECT_NE(html.find("calibrate: harbor"), std::string::npos);
-    for (const char* model : {">linear<", ">dong<", ">wimmer<"}) EXPECT_NE(html.find(model), std::string::npos) << model;
+    for (const char* model : {">linear<", ">dong<", ">wimmer<"})
+        EXPECT_NE(html.find(model), std::string::npos) << model;
     EXPECT_TRUE(fs::exists(sDir / "device_report_files" / "device_profile_errors.gp"));
     EXPECT_EQ(countOf(html, kEmbeddedPng), sGnuplot ? 2u : 0u);
 }
@@ -200,7 +209,8 @@ TEST_F(ReportCli, WithoutGnuplotThePageIsStillWritten) {
     EXPECT_TRUE(fs::exists(sDir / "no_gnuplot_files" / "curve.gp"));
     EXPECT_FALSE(fs::exists(sDir / "no_gnuplot_files" / "curve.png"));
     // A gnuplot path that does not exist is not fatal either.
-    EXPECT_EQ(runWith("LODOPT_GNUPLOT=/nonexistent/gnuplot", "report " + (sDir / "cmp").string() + " --quiet").exitCode, 0);
+    EXPECT_EQ(runWith("LODOPT_GNUPLOT=/nonexistent/gnuplot", "report " + (sDir / "cmp").string() + " --quiet").exitCode,
+              0);
 }
 
 TEST_F(ReportCli, BadInputExitsWithTwo) {
@@ -222,7 +232,9 @@ TEST_F(ReportCli, BadInputExitsWithTwo) {
 
 TEST(ReportHtml, Base64MatchesRfc4648) {
     using lodopt::cli::base64Encode;
-    auto encode = [](const std::string& text) { return base64Encode(std::vector<std::uint8_t>(text.begin(), text.end())); };
+    auto encode = [](const std::string& text) {
+        return base64Encode(std::vector<std::uint8_t>(text.begin(), text.end()));
+    };
     EXPECT_EQ(encode(""), "");
     EXPECT_EQ(encode("f"), "Zg==");
     EXPECT_EQ(encode("fo"), "Zm8=");

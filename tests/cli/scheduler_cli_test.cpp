@@ -2,16 +2,15 @@
 // coefficients and both fractions reported, checkpoints and --resume, the per-frame CSV, and
 // bad input mapped to exit code 2.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
-#include <unistd.h>
+#include <sstream>
 
 #include "scenes/builtin.hpp"
 #include "scheduler/coefficients.hpp"
@@ -58,7 +57,8 @@ protected:
         std::filesystem::create_directories(sDir);
         sProfile = (sDir / "device.json").string();
         sCalibrated = run("calibrate --scene harbor --samples 24 --jitter 1 --rounds 1 --repeats 1 --warmup 1 "
-                          "--size 128x128 --seed 3 --out " + sProfile + " --quiet")
+                          "--size 128x128 --seed 3 --out " +
+                          sProfile + " --quiet")
                           .exitCode == 0;
         if (!sCalibrated) return;
         // A budget between the cheapest and the dearest frame of the harbor's views, so that
@@ -70,8 +70,8 @@ protected:
             const lodopt::timemodel::FeatureTable table(scene, camera, 128, 128);
             highestCoarsest = std::max(highestCoarsest,
                                        model->estimateMs(table.features(lodopt::scenes::coarsestCombination(scene))));
-            lowestFinest = std::min(lowestFinest,
-                                    model->estimateMs(table.features(lodopt::scenes::referenceCombination(scene))));
+            lowestFinest =
+                std::min(lowestFinest, model->estimateMs(table.features(lodopt::scenes::referenceCombination(scene))));
         }
         sBudget = std::max(1.3 * highestCoarsest, 0.5 * (highestCoarsest + lowestFinest));
         // A camera path file: eight frames circling the ship.
@@ -90,9 +90,10 @@ protected:
     static void TearDownTestSuite() { std::filesystem::remove_all(sDir); }
 
     static std::string tuneArguments() {
-        return "tune --scene harbor --views 4 --evals 24 --max-iterations 6 --search-evals 30 --size 128x128 --threads 1 "
-               "--profile " + sProfile + " --budget-ms " + std::to_string(sBudget) + " --out " + sCoefficients +
-               " --quiet";
+        return "tune --scene harbor --views 4 --evals 24 --max-iterations 6 --search-evals 30 --size 128x128 --threads "
+               "1 "
+               "--profile " +
+               sProfile + " --budget-ms " + std::to_string(sBudget) + " --out " + sCoefficients + " --quiet";
     }
 
     void SetUp() override {
@@ -144,7 +145,8 @@ TEST_F(SchedulerCli, TuneReportsTunedAndPublishedFractions) {
     EXPECT_GT(c.importance.alpha1 + c.importance.alpha2, 0.0);
     EXPECT_TRUE(nlohmann::json::parse(readFile(sCoefficients)).contains("tuning"));
     for (int k = 0; k < 4; ++k) {
-        EXPECT_TRUE(std::filesystem::exists(sDir / "tune" / "coeffs_views" / ("view_00" + std::to_string(k) + ".json")));
+        EXPECT_TRUE(
+            std::filesystem::exists(sDir / "tune" / "coeffs_views" / ("view_00" + std::to_string(k) + ".json")));
     }
 }
 
@@ -189,8 +191,8 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
     std::istringstream lines(csv);
     std::string header;
     std::getline(lines, header);
-    for (const char* column : {"frame", "decision_us", "predicted_ms", "measured_ms", "fitness", "switches",
-                               "level_0", "level_5"}) {
+    for (const char* column :
+         {"frame", "decision_us", "predicted_ms", "measured_ms", "fitness", "switches", "level_0", "level_5"}) {
         EXPECT_NE(header.find(column), std::string::npos) << column;
     }
     int rows = 0;
@@ -209,9 +211,10 @@ TEST_F(SchedulerCli, BadInputExitsWithTwo) {
     EXPECT_EQ(run("schedule --scene harbor --path " + badPath + " --budget-ms 5" + common).exitCode, 2);
     const std::string badCoefficients = (sDir / "bad_coeffs.json").string();
     std::ofstream(badCoefficients) << R"({"format": "lodopt-scheduler-coefficients", "version": 1})";
-    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --coeffs " + badCoefficients + common)
-                  .exitCode,
-              2);
+    EXPECT_EQ(
+        run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --coeffs " + badCoefficients + common).exitCode,
+        2);
     EXPECT_EQ(run("tune --scene harbor --views 1 --budget-ms 5" + common).exitCode, 2);
-    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-control 1,2" + common).exitCode, 2);
+    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-control 1,2" + common).exitCode,
+              2);
 }

@@ -20,16 +20,25 @@
 
 namespace lodopt::fuzz {
 
-// A private scratch folder (RAM-backed when /dev/shm exists): the loaders take paths.
+// A private scratch folder (RAM-backed when /dev/shm exists: rewriting a file on ext4 flushes
+// it to disk each time), removed at exit. The loaders take paths, not bytes.
 inline const std::filesystem::path& scratchDir() {
-    static const std::filesystem::path dir = [] {
-        std::filesystem::path base = std::filesystem::exists("/dev/shm") ? std::filesystem::path("/dev/shm")
-                                                                         : std::filesystem::temp_directory_path();
-        std::filesystem::path path = base / ("lodopt-fuzz-" + std::to_string(::getpid()));
-        std::filesystem::create_directories(path);
-        return path;
-    }();
-    return dir;
+    struct Scratch {
+        std::filesystem::path path;
+        Scratch() {
+            const std::filesystem::path base = std::filesystem::exists("/dev/shm")
+                                                   ? std::filesystem::path("/dev/shm")
+                                                   : std::filesystem::temp_directory_path();
+            path = base / ("lodopt-fuzz-" + std::to_string(::getpid()));
+            std::filesystem::create_directories(path);
+        }
+        ~Scratch() {
+            std::error_code ignored;
+            std::filesystem::remove_all(path, ignored);
+        }
+    };
+    static const Scratch scratch;
+    return scratch.path;
 }
 
 inline std::string writeScratch(const std::string& name, const std::uint8_t* data, std::size_t size) {

@@ -8,11 +8,10 @@
 //         +-------------> x
 #pragma once
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "scenes/mesh_builder.hpp"
 #include "scenes/scene.hpp"
@@ -45,8 +44,7 @@ inline scenes::Scene makeGridScene(int nx, int nz, float spacing, float radius =
         for (int k = 0; k < nz; ++k) {
             const glm::vec3 position((float(i) - 0.5f * float(nx - 1)) * spacing, 0.0f,
                                      (float(k) - 0.5f * float(nz - 1)) * spacing);
-            scene.objects.push_back(
-                makeBlob("blob_" + std::to_string(i) + "_" + std::to_string(k), position, radius));
+            scene.objects.push_back(makeBlob("blob_" + std::to_string(i) + "_" + std::to_string(k), position, radius));
         }
     }
     scenes::updateStatistics(scene);

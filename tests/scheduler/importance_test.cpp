@@ -1,11 +1,12 @@
 // Importance (DONG15 eqs. 11-12): the published Table 4, the extended form, the observation of
 // an object from a camera, and the distance thresholds (eq. 4).
+#include "scheduler/importance.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "fixtures.hpp"
-#include "scheduler/importance.hpp"
 #include "timemodel/features.hpp"
 
 namespace lodopt::scheduler {
@@ -48,7 +49,7 @@ TEST(Importance, DenominatorIsTheFormula) {
     const ObjectView view = treeView(12, 20, 4);
     const ImportanceCoefficients c{0.3, 0.7, 0.0, 0.0};
     EXPECT_DOUBLE_EQ(importanceDenominator(view, c), 0.3 * (1.0 + std::tan(20 * kPi / 180)) * 12 + 0.7 * 100.0 / 4);
-    EXPECT_DOUBLE_EQ(importance(view, importanceDenominator(view, c), c), 1.0);  // its own benchmark
+    EXPECT_DOUBLE_EQ(importance(view, importanceDenominator(view, c), c), 1.0);       // its own benchmark
     EXPECT_DOUBLE_EQ(importance(view, importanceDenominator(view, c), c, 2.5), 2.5);  // weight w
 }
 
@@ -112,8 +113,7 @@ TEST(Importance, ObserveMeasuresDistanceAngleAreaAndPixels) {
     EXPECT_NEAR(view.viewAngleRadians, 0.0, 1e-3);
     const scenes::Bounds box = scene.objects[0].levels[0].stats.bounds;
     EXPECT_NEAR(view.projectedArea, double((box.max.x - box.min.x) * (box.max.y - box.min.y)), 1e-3);
-    EXPECT_DOUBLE_EQ(view.projectedPixels,
-                     timemodel::projectedPixels(box, vp * scene.objects[0].transform, w, h));
+    EXPECT_DOUBLE_EQ(view.projectedPixels, timemodel::projectedPixels(box, vp * scene.objects[0].transform, w, h));
     EXPECT_NEAR(view.centerOffset, 0.0, 1e-4);
     // Looking 30° away: θ follows, the object moves off centre.
     const glm::vec3 aside = camera.position + glm::vec3(std::tan(float(kPi / 6)) * -10.0f, 0, -10.0f);

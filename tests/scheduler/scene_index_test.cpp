@@ -1,12 +1,13 @@
 // The scheduler's per-frame knowledge without rendering: frustum culling, the projected box,
 // the Bounds-mode features against the exact FeatureTable, and the quadtree of tiles.
+#include "scheduler/scene_index.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "fixtures.hpp"
-#include "scheduler/scene_index.hpp"
 #include "scheduler/tiles.hpp"
 #include "timemodel/features.hpp"
 
@@ -55,8 +56,9 @@ TEST(SceneIndex, BoundsFeaturesTrackExactOnes) {
     const SceneIndex exact(scene, 128, 96, FeatureMode::Exact);
     FrameObjects a, b;
     int compared = 0;
-    for (const scenes::Camera& camera : {testing::lookAt({3, 6, 18}, {0, 0, 0}), testing::lookAt({-14, 4, 9}, {0, 1, 0}),
-                                         testing::lookAt({1, 2, 9}, {3, 1, 0})}) {
+    for (const scenes::Camera& camera :
+         {testing::lookAt({3, 6, 18}, {0, 0, 0}), testing::lookAt({-14, 4, 9}, {0, 1, 0}),
+          testing::lookAt({1, 2, 9}, {3, 1, 0})}) {
         bounds.beginFrame(camera, a);
         exact.beginFrame(camera, b);
         double sumA[timemodel::kFeatureCount] = {}, sumB[timemodel::kFeatureCount] = {};
@@ -70,7 +72,8 @@ TEST(SceneIndex, BoundsFeaturesTrackExactOnes) {
                 const timemodel::FrameFeatures& fb = b.contributions[exact.firstLevel(o) + l];
                 // Stats are exact in both modes, the projected box too (up to the 2% box tolerance
                 // under which a level reuses the previous level's projection).
-                for (Feature f : {Feature::kVertices, Feature::kTriangles, Feature::kDrawCalls, Feature::kDrawnObjects}) {
+                for (Feature f :
+                     {Feature::kVertices, Feature::kTriangles, Feature::kDrawCalls, Feature::kDrawnObjects}) {
                     EXPECT_NEAR(fa[f], fb[f], 1e-6 * std::max(1.0, fb[f])) << timemodel::featureName(f);
                 }
                 const double pixelTolerance = l == 0 ? 1e-6 * fb[Feature::kPixels] : 0.05 * fb[Feature::kPixels] + 1.0;

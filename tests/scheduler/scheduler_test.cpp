@@ -1,5 +1,7 @@
 // The frame scheduler (DONG15 §2.4 flat, CITY17 tiles) on scenes made of blobs, with a time
 // model that counts triangles, so every prediction can be checked by hand.
+#include "scheduler/scheduler.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include <set>
 
 #include "fixtures.hpp"
-#include "scheduler/scheduler.hpp"
 
 namespace lodopt::scheduler {
 namespace {
@@ -222,6 +223,40 @@ TEST(Scheduler, ExactAndBoundsFeaturesAgreeOnTriangles) {
         const FrameDecision da = a.decide(camera, 0.0);
         EXPECT_EQ(da.levels, b.decide(camera, 0.0).levels);
     }
+}
+
+// Quadtree vs flat on a grid: tile culling is conservative (the same objects are visible), both
+// meet the budget, and the tiles honour the distance levels (never finer than them) while the
+// flat scheduler spends what is left of the budget on raising beyond them.
+TEST(Scheduler, TilesAndFlatOnAGrid) {
+    const scenes::Scene scene = testing::makeGridScene(10, 10, 5.0f);
+    const SceneIndex index(scene, 128, 96, FeatureMode::Bounds);
+    SchedulerParameters p;
+    p.switchControl.enabled = false;
+    p.budgetMs = 25.0;
+    p.coefficients.thresholds.values = {6.0, 12.0};
+    FrameScheduler flat(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+    p.organisation = Organisation::Tiles;
+    p.quadtree.leafCapacity = 4;
+    FrameScheduler tiles(index, testing::triangleModel(kInterceptMs, kMsPerTriangle), p);
+    int flatFiner = 0;
+    for (const scenes::Camera& camera : orbit(16, 30.0f, 6.0f)) {
+        const FrameDecision f = flat.decide(camera, 0.0);
+        const FrameDecision& t = tiles.decide(camera, 0.0);
+        EXPECT_EQ(f.visibleObjects, t.visibleObjects);
+        for (int o = 0; o < index.objectCount(); ++o) {
+            EXPECT_EQ(flat.frame().visible[o], tiles.frame().visible[o]) << "object " << o;
+            if (t.levels[o] != scenes::kNotDrawn) EXPECT_GE(t.levels[o], tiles.initialLevels()[o]);
+        }
+        EXPECT_TRUE(f.budgetMet);
+        EXPECT_TRUE(t.budgetMet);
+        // When the distance levels fit, flat starts there and only raises; tiles stop there.
+        if (trianglesMs(scene, tiles.initialLevels()) <= p.budgetMs) {
+            EXPECT_GE(f.predictedMs + 1e-9, t.predictedMs);
+            if (f.predictedMs > t.predictedMs + 1e-9) ++flatFiner;
+        }
+    }
+    EXPECT_GT(flatFiner, 0);
 }
 
 TEST(Scheduler, RejectsBadParameters) {

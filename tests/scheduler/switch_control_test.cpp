@@ -1,10 +1,11 @@
 // Switch control (VMI20 §7): the allowed range of levels, and that it stops an object that
 // oscillates across a distance threshold from switching every frame.
+#include "scheduler/switch_control.hpp"
+
 #include <gtest/gtest.h>
 
 #include "fixtures.hpp"
 #include "scheduler/scheduler.hpp"
-#include "scheduler/switch_control.hpp"
 
 namespace lodopt::scheduler {
 namespace {
@@ -78,14 +79,14 @@ TEST(SwitchControl, RejectsBadParameters) {
 
 // One blob; the eye swings back and forth across the distance threshold (20 radii) every
 // frame, and the budget is exactly the cost of the threshold's level, so without control the
-// level flips every frame. With it (defaults: dwell 0.1 s · (20 − 2)^0.5 ≈ 0.42 s ≈ 13 frames)
-// a raise waits for the dwell time; lowering for the budget is forced when it must be.
+// level flips every frame. With it (dwell 0.1 s · (20 − 2)^0.5 ≈ 0.42 s ≈ 13 frames) a raise
+// waits for the dwell time; lowering for the budget is forced when it must be.
 int flickerSwitches(bool control) {
     const scenes::Scene scene = testing::makeGridScene(1, 1, 1.0f);
     const SceneIndex index(scene, 64, 64, FeatureMode::Bounds);
     SchedulerParameters p;
     p.coefficients.thresholds.values = {20.0, 1000.0};
-    p.switchControl.enabled = control;
+    p.switchControl = {control, 0.15, 0.5, 0.1, 0.5, 2.0};
     const double msPerTriangle = 1e-3;
     FrameScheduler scheduler(index, testing::triangleModel(0.0, msPerTriangle), p);
     const glm::vec3 center = index.shape(0).center;

@@ -1,5 +1,7 @@
 // Tuning: the search space maps the published defaults exactly, the compass search finds a
 // known maximum deterministically, and coefficients files round-trip and fail clearly.
+#include "scheduler/tuning.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 
 #include "fixtures.hpp"
 #include "scheduler/coefficients.hpp"
-#include "scheduler/tuning.hpp"
 
 namespace lodopt::scheduler {
 namespace {
@@ -122,12 +123,12 @@ TEST(Coefficients, BadFilesNameTheField) {
     expectError(head + R"("benchmark": {"scale": 1}, )" + thresholds + "}", ".importance");
     expectError(head + R"("importance": {"alpha1": -1, "alpha2": 0.4}, "benchmark": {"scale": 1}, )" + thresholds + "}",
                 "alpha1");
-    expectError(head + R"("importance": {"alpha1": 0.6, "alpha2": "x"}, "benchmark": {"scale": 1}, )" + thresholds +
-                    "}",
-                ".importance.alpha2");
-    expectError(head + R"("importance": {"alpha1": 0.6, "alpha2": 0.4}, "benchmark": {"scale": 0}, )" + thresholds +
-                    "}",
-                ".benchmark.scale");
+    expectError(
+        head + R"("importance": {"alpha1": 0.6, "alpha2": "x"}, "benchmark": {"scale": 1}, )" + thresholds + "}",
+        ".importance.alpha2");
+    expectError(
+        head + R"("importance": {"alpha1": 0.6, "alpha2": 0.4}, "benchmark": {"scale": 0}, )" + thresholds + "}",
+        ".benchmark.scale");
     expectError(head + R"("importance": {"alpha1": 0.6, "alpha2": 0.4}, "benchmark": {"scale": 1}, )" +
                     R"("distance_thresholds": {"relative_to_radius": true, "values": [8, 4]}})",
                 ".distance_thresholds");

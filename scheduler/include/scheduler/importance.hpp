@@ -29,9 +29,8 @@
 // same (d, θ, s, α1, α2): tests/scheduler/importance_test.cpp pins the published values.
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "scenes/scene.hpp"
 

@@ -6,35 +6,33 @@
 //           model was calibrated, but building it walks every level's geometry
 //           (O(vertices + triangles) per frame: milliseconds for a forest);
 //   Bounds  (default) O(levels) per visible object, no geometry. At construction each level is
-//           measured with the exact features from 14 canonical directions (6 axes, 8 diagonals)
-//           with the bounding sphere filling the viewport, from the 6 axis directions also at a
-//           quarter of that size (for the exponents below), and
-//           from a camera that does not see it. Per frame, with u the unseen features, v the
-//           seen ones in the canonical direction nearest to the eye, A the level's bounding box
-//           area on screen before viewport clipping and A_c after it:
+//           measured with the exact features from a camera that does not see it (u), and with
+//           its bounding sphere filling the viewport from 14 canonical directions (6 axes,
+//           8 diagonals; v), the 6 axis directions also at a quarter of that size. Per frame,
+//           with v taken in the canonical direction nearest to the eye, A the level's bounding
+//           box area on screen before viewport clipping, A_c after it, A_near the canonical one:
 //               f = u + (v − u) · (A_c / A) · (A / A_near)^e,
-//           e ∈ {0, ½, 1} per feature, the power that the two canonical sizes show (pixel areas
+//           e ∈ {0, ½, 1} per feature: the power that the two canonical sizes show (pixel areas
 //           scale with 1, edge lengths with ½, triangle counts with 0). So projected pixels are
 //           exact (a level whose box lies within 2% of the previous level's reuses its
-//           projection), visible triangles scale with the visible share of the box, raster areas with
-//           the screen area, and features added to the time model later are handled alike.
-//           An object whose centre is within 3 bounding radii of the eye (a terrain under it,
-//           a tree walked past) is measured instead through its proxy: the object alone with
-//           an even sample of at most 256 triangles per level, its features scaled per feature
-//           by the ratio object / proxy seen from the axis directions (this allocates): there a
-//           box's screen rectangle says little about what is in view.
-//           Features that depend on the other objects (the time model's shaded pixels, which
-//           a depth pass over the whole frame decides) see the object alone in both cases, so
-//           Bounds over-counts occluded fragments; the measured-time feedback absorbs such a
-//           bias. tests/scheduler/scene_index_test.cpp bounds the error against Exact.
+//           projection), visible triangles scale with the visible share of the box, raster
+//           areas with the screen area, and a feature added to the time model later is handled
+//           alike. An object whose centre is within 1.5 bounding radii of the eye (a terrain
+//           under it, a tree brushed past) is measured through its proxy instead: the object
+//           alone with an even sample of at most 256 triangles per level, each feature scaled
+//           by the object / proxy ratio seen from the axis directions (this allocates); there a
+//           box's screen rectangle says little about what is in view. Features that depend on
+//           the other objects (the time model's shaded pixels, decided by a depth pass over the
+//           whole frame) see the object alone, so Bounds over-counts occluded fragments; the
+//           measured-time feedback absorbs such a bias. tests/scheduler/scene_index_test.cpp
+//           bounds the error against Exact; docs/scheduler.md reports it on the scenes' paths.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "scenes/scene.hpp"
 #include "scheduler/importance.hpp"
@@ -72,9 +70,9 @@ struct FrameObjects {
     glm::mat4 viewProjection{1.0f};
     Frustum frustum;
     std::shared_ptr<const timemodel::FeatureTable> table;  // Exact mode
-    std::vector<std::uint8_t> visible;                   // per object: 1 when observed and in the frustum
-    std::vector<ObjectView> views;                       // per object, valid when visible
-    std::vector<timemodel::FrameFeatures> contributions;  // per (object, level), valid when visible
+    std::vector<std::uint8_t> visible;                     // per object: 1 when observed and in the frustum
+    std::vector<ObjectView> views;                         // per object, valid when visible
+    std::vector<timemodel::FrameFeatures> contributions;   // per (object, level), valid when visible
 };
 
 class SceneIndex {

@@ -3,23 +3,31 @@
 // Flat organisation (DONG15 §2.4, method.md §5), per frame:
 //  1. view-frustum culling (bounding spheres); culled objects are not drawn (kNotDrawn);
 //  2. importance I of every visible object (importance.hpp) and its initial level from the
-//     distance thresholds (eq. 4), within the range the switch control allows (switch_control.hpp);
+//     distance thresholds (eq. 4);
 //  3. predicted time from the time model over the frame's features (scene_index.hpp);
 //  4. under the budget: raise objects in decreasing importance, each as far toward level 0 as
 //     the budget allows (an object whose next step does not fit is passed over); over it: lower
-//     objects in increasing importance, each as far as needed, in passes
-//       a. I <= 1 within the switch control's range,  b. I <= 1 beyond it,
-//       c. I > 1 within the range,                    d. I > 1 beyond it,
-//     so an object with I > 1 is lowered only when the budget cannot be met otherwise
-//     (FrameDecision::protectedLowered counts them) and the switch control yields to the
-//     budget only when it must (forcedSwitches).
+//     objects in increasing importance, each as far as needed, first those with I <= 1, then,
+//     only if that was not enough, those with I > 1 (FrameDecision::protectedLowered counts
+//     the objects with I > 1 left coarser than their initial level).
+// Switch control (switch_control.hpp, VMI20 §7) then filters the decision: an object drawn in
+// the previous frame whose new level the control does not allow gets the allowed level nearest
+// to the decision's (its old level while its dwell time runs). If the held objects push the
+// prediction over the budget, objects are lowered again in increasing importance (I <= 1
+// first), within what the control allows and then beyond it (FrameDecision::forcedSwitches);
+// if they leave budget over, objects the decision lowered get back toward their previous
+// level, in decreasing importance, as far as it fits (a change avoided, a switch saved).
+// Filtering the decision, rather than constraining the loops, keeps the control from creating
+// changes: constrained loops hand a held object's share of the budget to its neighbours, which
+// then swap back and forth frame after frame (measured on the forest walk: four times the
+// switches of no control at all).
 // After the frame is rendered, reportMeasuredMs() feeds the measured time back into the time
 // model (DONG15 eq. 9, bounded: timemodel::FeedbackParameters).
 //
 // Tile organisation (CITY17 Algorithms 1-2, method.md §6), for large scenes:
 //  1. a quadtree of tiles (tiles.hpp) is culled against the frustum, visible leaves walked
 //     nearest first, objects within a leaf in decreasing importance;
-//  2. Algorithm 1: objects join the frame at their coarsest allowed level while the predicted
+//  2. Algorithm 1: objects join the frame at their coarsest level while the predicted
 //     time stays within the budget; the rest are not drawn (FrameDecision::droppedObjects).
 //     CITY17 keeps separate CPU and GPU budgets; our time model already combines the two
 //     (wimmer: RT_sys + max(RT_cpu, RT_gpu); linear: their sum), so one predicted-time budget
@@ -29,7 +37,10 @@
 //     are dropped to make room, whichever loses fewer pixels: stopping loses the object's
 //     projected pixels times the step's simplification-rate difference, dropping loses the
 //     dropped objects' projected pixels. Once `coarsestShare` (20%) of the drawn objects sit
-//     at their coarsest level, the rest stay where Algorithm 1 put them.
+//     at their coarsest level, the rest stay where Algorithm 1 put them. Ours: an object counts
+//     toward the 20% only when the budget kept it at its coarsest level (its distance level is
+//     finer); counting objects whose distance level is the coarsest anyway would end the
+//     raising after the first far tiles with most of the budget unused.
 // A decision allocates nothing once the scheduler has seen a frame (Bounds features).
 #pragma once
 
@@ -82,18 +93,18 @@ struct SchedulerParameters {
 void validateParameters(const SchedulerParameters& parameters, int objectCount);
 
 struct FrameDecision {
-    scenes::Combination levels;  // one per object; kNotDrawn = culled or dropped
-    double predictedMs = 0.0;    // the time model's prediction for `levels`
-    double minimumMs = 0.0;      // prediction with every visible object at its coarsest level
+    scenes::Combination levels;    // one per object; kNotDrawn = culled or dropped
+    double predictedMs = 0.0;      // the time model's prediction for `levels`
+    double minimumMs = 0.0;        // prediction with every visible object at its coarsest level
     bool budgetReachable = false;  // minimumMs <= budget: reachable without dropping objects
     bool budgetMet = false;        // predictedMs <= budget
     int visibleObjects = 0;        // passed culling
     int culledObjects = 0;
-    int droppedObjects = 0;        // visible but not drawn (tiles only)
-    int protectedLowered = 0;      // objects with I > 1 left coarser than their initial level
-    int forcedSwitches = 0;        // level changes against the switch control, for the budget
-    int switches = 0;              // objects drawn in both frames whose level changed
-    int heldObjects = 0;           // objects the switch control kept at their level this frame
+    int droppedObjects = 0;             // visible but not drawn (tiles only)
+    int protectedLowered = 0;           // objects with I > 1 left coarser than their initial level
+    int forcedSwitches = 0;             // level changes against the switch control, for the budget
+    int switches = 0;                   // objects drawn in both frames whose level changed
+    int heldObjects = 0;                // objects the switch control kept at their level this frame
     timemodel::FrameFeatures features;  // of `levels`, for the feedback
 };
 
@@ -120,7 +131,8 @@ public:
     const SceneIndex& index() const { return mIndex; }
 
     // Of the last frame, per object: importance (0 when not visible), the distance-threshold
-    // level (kNotDrawn when not visible), and the observed views and features.
+    // level of eq. 4 (kNotDrawn when not visible: the unscheduled baseline), and the observed
+    // views and features.
     const std::vector<double>& importances() const { return mImportance; }
     const scenes::Combination& initialLevels() const { return mInitial; }
     const FrameObjects& frame() const { return mFrame; }
@@ -132,6 +144,12 @@ private:
     void computeImportanceAndRanges(double timeSeconds);
     void decideFlat();
     void decideTiles();
+    void applySwitchControl();
+    // Sorts the visible objects into Work::order by importance (ties by index).
+    void sortByImportance(bool increasing);
+    // Lowers objects in Work::order (I <= 1 first when protecting) until the prediction fits,
+    // each at most to its switch-control limit (`withinRange`) or to its coarsest level.
+    double lowerToBudget(double ms, bool withinRange);
     void finishFrame(double timeSeconds);
     double estimate(const timemodel::FrameFeatures& features) const { return mModel->estimateMs(features); }
     const timemodel::FrameFeatures& contribution(int object, int level) const;
@@ -146,10 +164,10 @@ private:
     FrameDecision mDecision;
     std::vector<double> mImportance;
     scenes::Combination mInitial;
-    scenes::Combination mPrevious;         // last frame's levels (kNotDrawn when not drawn)
-    std::vector<double> mLastSwitchTime;   // per object, path seconds
-    std::vector<LevelRange> mRange;        // this frame's allowed levels per visible object
-    std::unique_ptr<Work> mWork;           // scratch buffers
+    scenes::Combination mPrevious;        // last frame's levels (kNotDrawn when not drawn)
+    std::vector<double> mLastSwitchTime;  // per object, path seconds
+    std::vector<LevelRange> mRange;       // this frame's allowed levels per visible object
+    std::unique_ptr<Work> mWork;          // scratch buffers
     bool mHavePrevious = false;
 };
 

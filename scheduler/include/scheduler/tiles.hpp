@@ -9,9 +9,8 @@
 #pragma once
 
 #include <array>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "scheduler/importance.hpp"
 #include "scheduler/scene_index.hpp"
@@ -26,10 +25,10 @@ struct QuadtreeParameters {
 class Quadtree {
 public:
     struct Tile {
-        glm::vec3 low{0.0f}, high{0.0f};  // world box around the objects' spheres
+        glm::vec3 low{0.0f}, high{0.0f};              // world box around the objects' spheres
         std::array<int, 4> children{-1, -1, -1, -1};  // tile indices, -1 for an empty quadrant
         bool leaf = true;
-        int firstObject = 0;              // leaf: range in objects()
+        int firstObject = 0;  // leaf: range in objects()
         int objectCount = 0;
         int depth = 0;
     };
