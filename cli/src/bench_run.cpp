@@ -158,7 +158,8 @@ bool isStochastic(const std::string& algorithm) {
 std::vector<AlgorithmRun> runAlgorithmGrid(const ViewContext& context, const OptimizeOptions& options,
                                            const std::vector<std::string>& algorithms,
                                            const std::vector<std::int64_t>& budgets, int seeds,
-                                           const std::function<void(const std::string&)>& step) {
+                                           const std::vector<AlgorithmRun>& finished,
+                                           const std::function<void(const AlgorithmRun&)>& onNewRun) {
     std::vector<AlgorithmRun> runs;
     for (const std::string& algorithm : algorithms) {
         for (std::int64_t budget : budgets) {
@@ -171,6 +172,11 @@ std::vector<AlgorithmRun> runAlgorithmGrid(const ViewContext& context, const Opt
             runOptions.maxSeconds = 0.0;
             const int runsHere = isStochastic(algorithm) ? seeds : 1;
             for (int seed = 1; seed <= runsHere; ++seed) {
+                const AlgorithmRun* saved = findRun(finished, algorithm, budget, std::uint64_t(seed));
+                if (saved) {
+                    runs.push_back(*saved);
+                    continue;
+                }
                 const auto start = Clock::now();
                 const optimizer::Result result = runAlgorithm(context, runOptions, algorithm, std::uint64_t(seed));
                 AlgorithmRun run;
@@ -182,15 +188,22 @@ std::vector<AlgorithmRun> runAlgorithmGrid(const ViewContext& context, const Opt
                 run.predictedMs = result.predictedMs;
                 run.evaluations = result.evaluations;
                 runs.push_back(run);
-                step(algorithm + " " + std::to_string(budget) + " evals seed " + std::to_string(seed));
+                onNewRun(run);
             }
         }
     }
     return runs;
 }
 
-BestKnown findBestKnown(const ViewContext& context, const OptimizeOptions& options, double exhaustiveLimit,
-                        std::vector<AlgorithmRun>& runs) {
+const AlgorithmRun* findRun(const std::vector<AlgorithmRun>& runs, const std::string& algorithm,
+                            std::int64_t evaluationBudget, std::uint64_t seed) {
+    for (const AlgorithmRun& run : runs) {
+        if (run.algorithm == algorithm && run.evaluationBudget == evaluationBudget && run.seed == seed) return &run;
+    }
+    return nullptr;
+}
+
+BestKnown searchBestKnown(const ViewContext& context, const OptimizeOptions& options, double exhaustiveLimit) {
     BestKnown best;
     best.combinations = optimizer::combinationCount(context.problem.levelCounts);
     if (best.combinations <= exhaustiveLimit) {
@@ -206,10 +219,13 @@ BestKnown findBestKnown(const ViewContext& context, const OptimizeOptions& optio
     } else {
         best.source = "best found";
     }
+    return best;
+}
+
+void applyBestKnown(BestKnown& best, std::vector<AlgorithmRun>& runs) {
     // The exhaustive optimum is the ceiling; "best found" is the best any run reached.
     for (const AlgorithmRun& run : runs) best.fitness = std::max(best.fitness, run.fitness);
     for (AlgorithmRun& run : runs) run.gap = std::max(0.0, best.fitness - run.fitness);
-    return best;
 }
 
 std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewContext& context,

@@ -47,16 +47,27 @@ struct BestKnown {
 
 bool isStochastic(const std::string& algorithm);
 
-// Runs every (algorithm, budget, seed); `step` is called after each run with a label.
+// Runs every (algorithm, budget, seed) of the grid, in that order. A run found in `finished`
+// (same algorithm, budget and seed: restored from a checkpoint) is taken from there, not run
+// again; `onNewRun` is called after each run made here.
 std::vector<AlgorithmRun> runAlgorithmGrid(const ViewContext& context, const OptimizeOptions& options,
                                            const std::vector<std::string>& algorithms,
                                            const std::vector<std::int64_t>& budgets, int seeds,
-                                           const std::function<void(const std::string&)>& step);
+                                           const std::vector<AlgorithmRun>& finished,
+                                           const std::function<void(const AlgorithmRun&)>& onNewRun);
 
-// Exhaustive optimum when the space has at most `exhaustiveLimit` combinations (>= 1), else
-// the best of `runs`. Fills every run's gap.
-BestKnown findBestKnown(const ViewContext& context, const OptimizeOptions& options, double exhaustiveLimit,
-                        std::vector<AlgorithmRun>& runs);
+// The run of `runs` with this algorithm, budget and seed, or null.
+const AlgorithmRun* findRun(const std::vector<AlgorithmRun>& runs, const std::string& algorithm,
+                            std::int64_t evaluationBudget, std::uint64_t seed);
+
+// The exhaustive optimum when the space has at most `exhaustiveLimit` combinations (>= 1);
+// otherwise source "best found" and fitness 0, for applyBestKnown to fill. Independent of the
+// runs, so a checkpoint can keep it while the set of runs changes.
+BestKnown searchBestKnown(const ViewContext& context, const OptimizeOptions& options, double exhaustiveLimit);
+
+// Raises best.fitness to the best of `runs` (a no-op under an exhaustive optimum) and fills
+// every run's gap.
+void applyBestKnown(BestKnown& best, std::vector<AlgorithmRun>& runs);
 
 struct EvalPathRow {
     std::string path;      // "fast" or "full"

@@ -2,6 +2,11 @@
 // (wall time and gap to the best fitness known), fast vs full evaluation path, metrics against
 // float64 references, and the time models' error. The measurements are in bench_run.hpp; this
 // file parses options, writes the CSVs, bench.json and the Pareto plot, and prints a summary.
+//
+// Each grid run and each later section is one unit of work: after it, every finished unit is
+// saved in <out>/bench.checkpoint.json (bench_checkpoint.hpp) and an interrupt (SIGINT/SIGTERM)
+// stops there; --resume reuses the saved units, so the outputs equal an uninterrupted run's
+// (timings aside). The checkpoint is removed once bench.json is written.
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -10,8 +15,10 @@
 #include <map>
 #include <sstream>
 
+#include "bench_checkpoint.hpp"
 #include "bench_run.hpp"
 #include "cli_common.hpp"
+#include "interrupt.hpp"
 #include "optimizer/checked_evaluator.hpp"
 #include "optimizer/mckp.hpp"
 #include "progress.hpp"
@@ -33,6 +40,7 @@ struct BenchOptions {
     int timingRepeats = 5;
     double exhaustiveLimit = 1e6;
     bool quick = false;
+    bool resume = false;
     std::string out = "out/bench";
     OutputOptions output;
 };
@@ -74,6 +82,26 @@ double defaultBudget(const ViewContext& context) {
     return high > low ? low + 0.5 * (high - low) : std::max(low, 1e-3) * 1.01;
 }
 
+// Everything that changes a unit's result, keyed by option name. --threads does not (results
+// are identical for any thread count); --algos, --evals and --seeds may change too: grid runs
+// are matched by algorithm, budget and seed, and the best found is recomputed from the runs.
+nlohmann::json checkpointIdentity(const BenchOptions& bench) {
+    const OptimizeOptions& o = bench.optimize;
+    return {{"scene", o.scene},
+            {"view", o.view},
+            {"seed", o.seed},
+            {"budget-ms", o.budgetMs > 0.0 ? nlohmann::json(o.budgetMs) : nlohmann::json()},
+            {"size", o.size},
+            {"weights", o.weights},
+            {"profile", o.profile},
+            {"model", o.model},
+            {"exhaustive-limit", bench.exhaustiveLimit},
+            {"candidates", bench.candidates},
+            {"metrics-seconds", bench.metricsSeconds},
+            {"timing-frames", bench.timingFrames},
+            {"quick", bench.quick}};  // beyond the options above, it sets the timing repeats
+}
+
 void runBench(const BenchOptions& bench) {
     const auto start = std::chrono::steady_clock::now();
     OptimizeOptions options = bench.optimize;
@@ -89,9 +117,37 @@ void runBench(const BenchOptions& bench) {
         budgets.push_back(value);
     }
     if (options.view == "all") throw UsageError("bench: --view must name one view");
+
+    const std::filesystem::path dir(bench.out);
+    const std::string checkpointPath = (dir / kBenchCheckpoint).string();
+    const nlohmann::json identity = checkpointIdentity(bench);
+    BenchCheckpoint checkpoint;
+    if (std::filesystem::exists(checkpointPath)) {
+        if (!bench.resume) {
+            throw UsageError(checkpointPath + " holds the finished units of an interrupted bench: add --resume to "
+                                              "continue it, or delete the file to start over");
+        }
+        checkpoint = loadBenchCheckpoint(checkpointPath, identity);
+    } else if (bench.resume && !bench.output.quiet && !bench.output.json) {
+        std::cerr << "lodopt: bench: no checkpoint in " << dir.string() << ", starting from the first unit\n";
+    }
+    std::size_t gridRuns = 0, done = 0;
+    for (const std::string& name : algorithms) {
+        const int runsHere = isStochastic(name) ? bench.seeds : 1;
+        gridRuns += budgets.size() * std::size_t(runsHere);
+        for (std::int64_t budget : budgets) {
+            for (int seed = 1; seed <= runsHere; ++seed) {
+                done += findRun(checkpoint.runs, name, budget, std::uint64_t(seed)) ? 1 : 0;
+            }
+        }
+    }
+    done += std::size_t(checkpoint.bestKnown.has_value()) + std::size_t(checkpoint.evalPaths.has_value()) +
+            std::size_t(checkpoint.metrics.has_value()) + std::size_t(checkpoint.timeModels.has_value());
+    const std::size_t total = gridRuns + 4;  // the runs, best known, evaluation paths, metrics, time models
+
+    InterruptGuard interruptGuard;
     const bool budgetGiven = options.budgetMs > 0.0;
     if (!budgetGiven) options.budgetMs = std::numeric_limits<double>::max();  // set below from the view
-
     PreparedScene prepared = prepareScene(options);
     ViewContext context = prepareView(prepared, prepared.views[0], options);
     if (!budgetGiven) {
@@ -109,24 +165,54 @@ void runBench(const BenchOptions& bench) {
         tableSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tableStart).count();
         tableEvaluations = checked.evaluations();
     }
-    std::size_t gridRuns = 0;
-    for (const std::string& name : algorithms)
-        gridRuns += budgets.size() * std::size_t(isStochastic(name) ? bench.seeds : 1);
-    Progress progress("bench", gridRuns + 4, bench.output.quiet);
+    if (done < total) pollInterrupt("bench", done, total, "unit", checkpointPath);
 
-    std::vector<AlgorithmRun> runs = runAlgorithmGrid(context, options, algorithms, budgets, bench.seeds,
-                                                      [&](const std::string& label) { progress.step(label); });
-    const BestKnown best = findBestKnown(context, options, bench.exhaustiveLimit, runs);
-    progress.step("best known (" + best.source + ")");
-    const std::vector<EvalPathRow> paths = measureEvalPaths(prepared, context, options, bench.candidates, options.seed);
-    progress.step("evaluation paths");
-    const std::vector<MetricsRow> metricRows = measureMetrics(prepared, context, bench.metricsSeconds);
-    progress.step("metrics");
-    std::vector<std::string> warnings;
-    const std::vector<TimeModelRow> timeRows =
-        measureTimeModels(prepared, context, options, bench.timingFrames, bench.timingRepeats, options.seed, warnings);
-    progress.step("time models");
+    Progress progress("bench", total - done, bench.output.quiet);
+    // After each new unit: save every finished one, then stop here if a signal came. After the
+    // last unit only the outputs are left: finish them rather than stop.
+    auto unitDone = [&](const std::string& label) {
+        saveBenchCheckpoint(checkpointPath, identity, checkpoint);
+        progress.step(label);
+        try {
+            if (++done < total) pollInterrupt("bench", done, total, "unit", checkpointPath);
+        } catch (const Interrupted&) {
+            progress.finish();  // the message starts on a clean line
+            throw;
+        }
+    };
+    auto onNewRun = [&](const AlgorithmRun& run) {
+        checkpoint.runs.push_back(run);
+        unitDone(run.algorithm + " " + std::to_string(run.evaluationBudget) + " evals seed " +
+                 std::to_string(run.seed));
+    };
+    std::vector<AlgorithmRun> runs =
+        runAlgorithmGrid(context, options, algorithms, budgets, bench.seeds, checkpoint.runs, onNewRun);
+    if (!checkpoint.bestKnown) {
+        checkpoint.bestKnown = searchBestKnown(context, options, bench.exhaustiveLimit);
+        unitDone("best known (" + checkpoint.bestKnown->source + ")");
+    }
+    BestKnown best = *checkpoint.bestKnown;
+    applyBestKnown(best, runs);
+    if (!checkpoint.evalPaths) {
+        checkpoint.evalPaths = measureEvalPaths(prepared, context, options, bench.candidates, options.seed);
+        unitDone("evaluation paths");
+    }
+    if (!checkpoint.metrics) {
+        checkpoint.metrics = measureMetrics(prepared, context, bench.metricsSeconds);
+        unitDone("metrics");
+    }
+    if (!checkpoint.timeModels) {
+        TimeModelSection section;
+        section.rows = measureTimeModels(prepared, context, options, bench.timingFrames, bench.timingRepeats,
+                                         options.seed, section.warnings);
+        checkpoint.timeModels = std::move(section);
+        unitDone("time models");
+    }
     progress.finish();
+    const std::vector<EvalPathRow>& paths = *checkpoint.evalPaths;
+    const std::vector<MetricsRow>& metricRows = *checkpoint.metrics;
+    const std::vector<TimeModelRow>& timeRows = checkpoint.timeModels->rows;
+    const std::vector<std::string>& warnings = checkpoint.timeModels->warnings;
 
     // Per (algorithm, budget): medians over seeds.
     std::ostringstream runsCsv, algorithmsCsv, pathsCsv, metricsCsv, timeCsv;
@@ -208,7 +294,6 @@ void runBench(const BenchOptions& bench) {
                              {"max_error", jsonNumberOrNull(row.max)}});
     }
 
-    const std::filesystem::path dir(bench.out);
     scenes::writeTextAtomically((dir / kBenchRunsCsv).string(), runsCsv.str());
     scenes::writeTextAtomically((dir / kBenchAlgorithmsCsv).string(), algorithmsCsv.str());
     scenes::writeTextAtomically((dir / kBenchEvalPathsCsv).string(), pathsCsv.str());
@@ -250,6 +335,7 @@ void runBench(const BenchOptions& bench) {
         {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
     };
     writeJsonFile((dir / kBenchJson).string(), document);
+    std::filesystem::remove(checkpointPath);  // every unit is now in the outputs
     if (bench.output.json) {
         document["out"] = bench.out;
         printJson(document);
@@ -337,6 +423,8 @@ void addBenchCommand(CLI::App& app) {
                       "A smoke run: 2 seeds, budgets 30,100, 12 candidates, 8 timed frames, short metric timing "
                       "(explicit options still win)");
     command->add_option("--out", bench->out, "Output folder")->capture_default_str();
+    command->add_flag("--resume", bench->resume,
+                      "Continue from the units saved in OUT/bench.checkpoint.json by an interrupted bench");
     addOutputOptions(*command, bench->output);
     command->callback([bench, command] {
         BenchOptions options = *bench;

@@ -60,13 +60,25 @@ void addOptimizeOptions(CLI::App& command, OptimizeOptions& options) {
     command.add_option("--max-seconds", options.maxSeconds, "Wall-time limit per view (0 = none)")
         ->check(CLI::NonNegativeNumber);
     command.add_flag("--paper", options.paper, "GA-PSO with the published settings (c1=c2=2, w=1, 3 particles, 20 it.)");
-    command.add_option("--seed-from", options.seedFrom, "Seed the GA-PSO swarm from another algorithm's answer")
-        ->check(CLI::IsMember({"", "mckp", "greedy", "screensize"}));
+    command
+        .add_option("--seed-from", options.seedFrom,
+                    "Start the swarm from these algorithms' answers: comma-separated mckp, greedy, screensize, or none")
+        ->check([](const std::string& value) {
+            try {
+                seedAlgorithms(value);
+            } catch (const UsageError& error) {
+                return std::string(error.what());
+            }
+            return std::string();
+        })
+        ->capture_default_str();
     command.add_option("--particles", options.particles, "GA-PSO swarm size")->check(CLI::Range(1, 10000));
 }
 
 void addOptimizeCommand(CLI::App& app) {
     auto options = std::make_shared<OptimizeOptions>();
+    // The answer a user gets is never below the engine baseline's: the swarm starts from it.
+    options->seedFrom = "screensize,mckp";
     auto outDir = std::make_shared<std::string>("out/optimize");
     auto output = std::make_shared<OutputOptions>();
     CLI::App* command = app.add_subcommand("optimize", "Find the best LOD combination under a time budget");

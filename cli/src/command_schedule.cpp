@@ -1,6 +1,11 @@
 // lodopt schedule: the real-time scheduler along a camera path, one decision per frame without
 // rendering; with --render each frame is then rendered headless, timed, scored against the
 // all-finest reference and its measured time fed back into the time model.
+//
+// Frames are checkpointed in batches (--batch) to <out>/schedule.checkpoint.json; an interrupt
+// (SIGINT/SIGTERM) stops after the current batch and --resume continues from it
+// (schedule_checkpoint.hpp): without --render the outputs equal an uninterrupted run's, wall
+// times aside. The checkpoint is removed once frames.csv and summary.json are written.
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -9,12 +14,15 @@
 #include <sstream>
 
 #include "cli_common.hpp"
+#include "interrupt.hpp"
 #include "metrics/metrics.hpp"
 #include "progress.hpp"
 #include "renderer/renderer.hpp"
 #include "scenes/atomic_file.hpp"
 #include "scenes/builtin.hpp"
+#include "schedule_checkpoint.hpp"
 #include "schedule_common.hpp"
+#include "scheduler/coefficients.hpp"
 #include "scheduler/scheduler.hpp"
 #include "time_profile.hpp"
 #include "timemodel/features.hpp"
@@ -44,8 +52,37 @@ struct ScheduleOptions {
     int frames = 0;
     int stride = 1;
     int repeats = 3;
+    int batch = 25;
+    bool resume = false;
     std::string outDir = "out/schedule";
 };
+
+// Everything that changes a frame's row, keyed by option name (--batch does not). The
+// coefficients are recorded by value, so a rewritten file does not resume silently.
+nlohmann::json checkpointIdentity(const ScheduleOptions& o, const scheduler::SchedulerParameters& parameters) {
+    return {{"scene", o.scene},
+            {"scene-seed", o.sceneSeed},
+            {"path", o.path},
+            {"budget-ms", o.budgetMs},
+            {"coeffs", {{"file", o.coefficients},
+                        {"values", nlohmann::json::parse(scheduler::coefficientsToJson(parameters.coefficients))}}},
+            {"render", o.render},
+            {"no-fitness", o.noFitness},
+            {"no-baseline", o.noBaseline},
+            {"check-features", o.checkFeatures},
+            {"size", o.size},
+            {"profile", o.profile},
+            {"model", o.model},
+            {"organisation", o.organisation},
+            {"features", o.features},
+            {"no-switch-control", o.noSwitchControl},
+            {"switch-control", o.switchControl},
+            {"no-feedback", o.noFeedback},
+            {"feedback-beta", o.beta},
+            {"frames", o.frames},
+            {"stride", o.stride},
+            {"repeats", o.repeats}};
+}
 
 // Fused fitness of `frame` against `reference` (both RGBA renders of one size).
 double fitnessOf(const renderer::Frame& frame, const renderer::Frame& reference, const metrics::MetricParameters& p) {
@@ -166,6 +203,20 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     parameters.feedback.beta = options.beta;
     const scheduler::FeatureMode mode = parseFeatureMode(options.features);
 
+    const std::filesystem::path dir(options.outDir);
+    const std::string checkpoint = (dir / "schedule.checkpoint.json").string();
+    const nlohmann::json identity = checkpointIdentity(options, parameters);
+    std::vector<SavedFrame> restored;
+    if (std::filesystem::exists(checkpoint)) {
+        if (!options.resume) {
+            throw UsageError(checkpoint + " holds the frames of an interrupted schedule: add --resume to continue "
+                                          "it, or delete the file to start over");
+        }
+        restored = loadScheduleCheckpoint(checkpoint, identity);
+    } else if (options.resume && !output.quiet && !output.json) {
+        std::cerr << "lodopt: schedule: no checkpoint in " << dir.string() << ", starting from the first frame\n";
+    }
+
     const auto setupStart = std::chrono::steady_clock::now();
     const scheduler::SceneIndex index(scene, settings.width, settings.height, mode);
     scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
@@ -177,10 +228,19 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     scenes::Combination finest, baseline;
     std::vector<FrameRow> rows;
     rows.reserve(frameIndices.size());
-    Progress progress("schedule", frameIndices.size(), output.quiet);
+    std::vector<SavedFrame> savedFrames = std::move(restored);
+    if (savedFrames.size() > frameIndices.size()) {
+        throw UsageError(checkpoint + ": holds more frames than this run has; delete it to start over");
+    }
+    const std::size_t total = frameIndices.size();
+    InterruptGuard interruptGuard;
+    if (savedFrames.size() < total) pollInterrupt("schedule", savedFrames.size(), total, "frame", checkpoint);
+    Progress progress("schedule", total - savedFrames.size(), output.quiet || output.json);
     const int maxLevels = index.maxLevelCount();
-    for (int f : frameIndices) {
+    for (std::size_t i = 0; i < total; ++i) {
+        const int f = frameIndices[i];
         const scenes::Camera& camera = path.frames[std::size_t(f)];
+        const SavedFrame* saved = i < savedFrames.size() ? &savedFrames[i] : nullptr;
         FrameRow row;
         row.frame = f;
         row.timeSeconds = double(f) / double(path.framesPerSecond);
@@ -195,14 +255,38 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         // The unscheduled baseline: the distance thresholds' levels of the visible objects.
         baseline = frameScheduler.initialLevels();
         row.baselinePredictedMs = predictInLastFrame(frameScheduler, baseline);
+        row.histogram.assign(std::size_t(maxLevels), 0);
+        for (int level : decision.levels) {
+            if (level != scenes::kNotDrawn) ++row.histogram[std::size_t(level)];
+        }
+        if (saved) {
+            // A replayed frame: the decision above restores the switch-control state; what was
+            // measured comes from the checkpoint, and its feedback restores the model's.
+            if (saved->frame != f || saved->predictedMs != row.predictedMs ||
+                saved->levelsHash != levelsHash(decision.levels)) {
+                throw UsageError(checkpoint + ": frame " + std::to_string(f) +
+                                 " does not replay to the saved decision (scene, path or profile changed?); "
+                                 "delete it to start over");
+            }
+            row.decisionMicroseconds = saved->decisionMicroseconds;
+            row.exactPredictedMs = saved->exactPredictedMs;
+            row.measuredMs = saved->measuredMs;
+            row.baselineMeasuredMs = saved->baselineMeasuredMs;
+            row.fitness = saved->fitness;
+            row.baselineFitness = saved->baselineFitness;
+            if (renderer && !options.noFeedback) frameScheduler.reportMeasuredMs(row.measuredMs);
+            row.feedbackScale = frameScheduler.model().feedbackScale();
+            if (row.feedbackScale != saved->feedbackScale) {
+                throw UsageError(checkpoint + ": frame " + std::to_string(f) +
+                                 " replays to another feedback scale; delete it to start over");
+            }
+            rows.push_back(std::move(row));
+            continue;
+        }
         if (options.checkFeatures) {
             // The same levels with the time model's exact features (walks the geometry).
             const timemodel::FeatureTable table(scene, camera, settings.width, settings.height);
             row.exactPredictedMs = frameScheduler.model().estimateMs(table.features(decision.levels));
-        }
-        row.histogram.assign(std::size_t(maxLevels), 0);
-        for (int level : decision.levels) {
-            if (level != scenes::kNotDrawn) ++row.histogram[std::size_t(level)];
         }
         if (renderer) {
             if (!options.noFitness) {
@@ -220,8 +304,22 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
             if (!options.noFeedback) frameScheduler.reportMeasuredMs(row.measuredMs);
         }
         row.feedbackScale = frameScheduler.model().feedbackScale();
+        savedFrames.push_back({f, row.decisionMicroseconds, row.measuredMs, row.baselineMeasuredMs, row.fitness,
+                               row.baselineFitness, row.exactPredictedMs, row.predictedMs, row.feedbackScale,
+                               levelsHash(decision.levels)});
         rows.push_back(std::move(row));
         progress.step(camera.name);
+        const std::size_t done = i + 1;
+        if (done % std::size_t(options.batch) == 0 || done == total) {
+            saveScheduleCheckpoint(checkpoint, identity, savedFrames);
+            // After the last batch only the outputs are left: finish them rather than stop.
+            try {
+                if (done < total) pollInterrupt("schedule", done, total, "frame", checkpoint);
+            } catch (const Interrupted&) {
+                progress.finish();  // the message starts on a clean line
+                throw;
+            }
+        }
     }
     progress.finish();
 
@@ -298,9 +396,9 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
             if (!options.noBaseline) summary["baseline_fitness"] = spreadJson(spreadOf(baselineFitness));
         }
     }
-    const std::filesystem::path dir(options.outDir);
     scenes::writeTextAtomically((dir / "frames.csv").string(), framesCsv(rows, maxLevels));
     writeJsonFile((dir / "summary.json").string(), summary);
+    std::filesystem::remove(checkpoint);  // every frame is now in the outputs
     summary["out"] = options.outDir;
     if (output.json) {
         printJson(summary);
@@ -362,7 +460,7 @@ void addScheduleCommand(CLI::App& app) {
         ->check(CLI::IsMember({"bounds", "exact"}))
         ->capture_default_str();
     command->add_flag("--no-switch-control", options->noSwitchControl, "Switch levels freely (no hysteresis)");
-    command->add_option("--switch-control", options->switchControl, "Switch control D1,K1,D2,K2,NEAR");
+    command->add_option("--switch-control", options->switchControl, "Switch control D1,K1,D2,K2,NEAR[,MAXDWELL] (defaults 1,0.5,0.2,1,0,1)");
     command->add_flag("--no-feedback", options->noFeedback, "With --render: do not correct the model");
     command->add_option("--feedback-beta", options->beta, "Feedback gain beta, DONG15 eq. 9")
         ->check(CLI::Range(1e-6, 0.999999))
@@ -375,6 +473,11 @@ void addScheduleCommand(CLI::App& app) {
     command->add_option("--repeats", options->repeats, "With --render: timed draws per frame (median)")
         ->check(CLI::Range(1, 100))
         ->capture_default_str();
+    command->add_option("--batch", options->batch, "Frames per checkpoint (the unit an interrupt waits for)")
+        ->check(CLI::Range(1, 1000000))
+        ->capture_default_str();
+    command->add_flag("--resume", options->resume,
+                      "Continue from the frames saved in OUT/schedule.checkpoint.json by an interrupted schedule");
     command->add_option("--out", options->outDir, "Output folder (frames.csv, summary.json)")->capture_default_str();
     addOutputOptions(*command, *output);
     command->callback([options, output] { runSchedule(*options, *output); });

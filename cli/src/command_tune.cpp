@@ -5,10 +5,14 @@
 // the view's fast evaluator; the scheduler's choice on the same view is scored with the same
 // evaluator (its scene levels mapped by ViewSetup::fromScene), so "the scheduler's fitness as a
 // fraction of the optimizer's" compares like with like. Each finished view is checkpointed to
-// <out stem>_views/view_NNN.json; --resume skips views whose checkpoint has the same settings.
+// <out stem>_views/view_NNN.json; --resume skips views whose checkpoint has the same settings,
+// and without it an existing checkpoint is refused rather than overwritten. Each view is one
+// unit of work: an interrupt (SIGINT/SIGTERM) stops after the view in progress is saved. The
+// checkpoints stay after the run (the report names the folder), so a later run can reuse them.
 // Views are split into tuning and held-out ones; the compass search (scheduler/tuning.hpp)
 // maximises the mean fraction on the tuning views, and both the tuned coefficients and the
 // published defaults are reported on the held-out views.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -21,6 +25,7 @@
 #include "cli_common.hpp"
 #include "evaluation/evaluation.hpp"
 #include "evaluation/time_cost.hpp"
+#include "interrupt.hpp"
 #include "optimize_run.hpp"
 #include "progress.hpp"
 #include "schedule_common.hpp"
@@ -78,6 +83,54 @@ nlohmann::json settingsSignature(const TuneOptions& o) {
 std::filesystem::path checkpointDir(const std::string& out) {
     const std::filesystem::path file(out);
     return file.parent_path() / (file.stem().string() + "_views");
+}
+
+// The option behind a key of settingsSignature(), for messages.
+std::string optionOfSetting(const std::string& key) {
+    if (key == "algorithm") return "--algo";
+    std::string option = "--" + key;
+    std::replace(option.begin(), option.end(), '_', '-');
+    return option;
+}
+
+// Names the first setting that differs between a checkpoint's and this run's, "" when none does.
+std::string differingSetting(const nlohmann::json& saved, const nlohmann::json& signature) {
+    for (auto it = signature.begin(); it != signature.end(); ++it) {
+        if (!saved.is_object() || !saved.contains(it.key()) || saved[it.key()] != it.value()) {
+            return optionOfSetting(it.key()) + " " +
+                   (saved.is_object() && saved.contains(it.key()) ? saved[it.key()].dump() : std::string("(unset)")) +
+                   ", this run has " + it.value().dump();
+        }
+    }
+    return "";
+}
+
+// Without --resume, view checkpoints left by an earlier tune are refused rather than silently
+// overwritten: they hold its optimizer runs, the expensive part.
+// Without --resume, view files of an interrupted tune are refused (they would be lost); those
+// of a finished one (the coefficients file is at least as new as every view file) are cleared,
+// so that running the same tune again just works.
+void refuseExistingCheckpoints(const TuneOptions& options) {
+    const std::filesystem::path dir = checkpointDir(options.out);
+    if (options.resume || !std::filesystem::is_directory(dir)) return;
+    std::vector<std::filesystem::path> saved;
+    std::filesystem::file_time_type newest = std::filesystem::file_time_type::min();
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("view_", 0) != 0 || entry.path().extension() != ".json") continue;
+        saved.push_back(entry.path());
+        newest = std::max(newest, entry.last_write_time());
+    }
+    if (saved.empty()) return;
+    std::error_code error;
+    const auto finished = std::filesystem::last_write_time(options.out, error);
+    if (!error && finished >= newest) {
+        for (const std::filesystem::path& file : saved) std::filesystem::remove(file);
+        return;
+    }
+    throw UsageError(dir.string() + " holds " + std::to_string(saved.size()) +
+                     " view checkpoint(s) of an unfinished tune: add --resume to reuse them, or delete the "
+                     "folder to start over");
 }
 
 std::vector<scenes::Camera> sampleCameras(const scenes::Scene& scene, const TuneOptions& options) {
@@ -141,6 +194,7 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
     const std::filesystem::path dir = checkpointDir(options.out);
     const nlohmann::json signature = settingsSignature(options);
     Progress progress("tune: optimizer per view", views.size(), output.quiet);
+    InterruptGuard interruptGuard;
     for (std::size_t k = 0; k < views.size(); ++k) {
         TuneView& view = views[k];
         std::ostringstream name;
@@ -157,9 +211,14 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
                 !saved.contains("combination")) {
                 throw UsageError(checkpoint.string() + ": not a tune checkpoint (delete it or drop --resume)");
             }
-            if (saved["settings"] != signature || saved["camera"] != cameraToJson(view.camera)) {
+            const std::string differing = differingSetting(saved["settings"], signature);
+            if (!differing.empty()) {
+                throw UsageError(checkpoint.string() + ": was written with " + differing +
+                                 "; resume with the same options, or delete the folder to start over");
+            }
+            if (saved["camera"] != cameraToJson(view.camera)) {
                 throw UsageError(checkpoint.string() +
-                                 ": made with other settings or another viewpoint; delete the folder or drop --resume");
+                                 ": made from another viewpoint; delete the folder or drop --resume");
             }
             view.optimizerLevels = saved["combination"].get<scenes::Combination>();
             view.optimizerSeconds = saved.value("seconds", 0.0);
@@ -194,6 +253,13 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
         // Scored here with the same evaluator as every scheduler choice, resumed or not.
         view.optimizerFitness = view.evaluator->evaluate(view.setup->fromScene(view.optimizerLevels)).fitness;
         progress.step(view.camera.name + (view.resumed ? " (resumed)" : ""));
+        // After the last view only the coefficient search is left: finish it rather than stop.
+        try {
+            if (k + 1 < views.size()) pollInterrupt("tune", k + 1, views.size(), "view", dir.string());
+        } catch (const Interrupted&) {
+            progress.finish();  // the message starts on a clean line
+            throw;
+        }
     }
     progress.finish();
 }
@@ -206,6 +272,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
         throw UsageError("--holdout " + std::to_string(holdout) + ": must leave at least one of the " +
                          std::to_string(options.views) + " views for tuning");
     }
+    refuseExistingCheckpoints(options);
     const auto start = std::chrono::steady_clock::now();
     options.optimize.view = "0";
     PreparedScene prepared = prepareScene(options.optimize);
@@ -405,7 +472,8 @@ void addTuneCommand(CLI::App& app) {
     command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();
     command->add_option("--profile", o.profile, "Device profile from 'lodopt calibrate' (default: shipped)");
     command->add_option("--model", o.model, "Time model in the profile");
-    command->add_flag("--resume", options->resume, "Skip views whose checkpoint exists with the same settings");
+    command->add_flag("--resume", options->resume,
+                      "Reuse the views saved in <out stem>_views/ (same settings); without it they are refused");
     addOutputOptions(*command, *output);
     command->callback([options, output] { runTune(*options, *output); });
 }

@@ -1,5 +1,6 @@
 #include "optimize_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <iomanip>
 #include <map>
@@ -106,6 +107,22 @@ optimizer::Termination terminationOf(const OptimizeOptions& options) {
 
 }  // namespace
 
+std::vector<std::string> seedAlgorithms(const std::string& seedFrom) {
+    std::vector<std::string> names;
+    if (seedFrom.empty() || seedFrom == "none") return names;
+    std::size_t start = 0;
+    while (start <= seedFrom.size()) {
+        const std::size_t comma = std::min(seedFrom.find(',', start), seedFrom.size());
+        const std::string name = seedFrom.substr(start, comma - start);
+        if (name != "mckp" && name != "greedy" && name != "screensize") {
+            throw UsageError("--seed-from: '" + name + "' is not mckp, greedy or screensize (or none)");
+        }
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+        start = comma + 1;
+    }
+    return names;
+}
+
 optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions& options,
                                const std::string& algorithm, std::uint64_t seed) {
     const optimizer::Problem& problem = context.problem;
@@ -122,7 +139,8 @@ optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions
     }
     const optimizer::Termination termination = terminationOf(options);
     const bool swarm = algorithm == "gapso" || algorithm == "pso" || algorithm == "ga";
-    if (!swarm || (!options.paper && options.particles == 0 && options.seedFrom.empty())) {
+    const std::vector<std::string> seeds = seedAlgorithms(options.seedFrom);
+    if (!swarm || (!options.paper && options.particles == 0 && seeds.empty())) {
         return optimizer::makeAlgorithm(algorithm, seed)->run(problem, termination);
     }
     optimizer::GapsoParameters parameters =
@@ -133,10 +151,12 @@ optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions
     if (options.particles > 0) parameters.particles = options.particles;
     optimizer::Result result;
     std::int64_t seedEvaluations = 0;
-    if (!options.seedFrom.empty()) {
-        optimizer::Result start = optimizer::makeAlgorithm(options.seedFrom, seed)->run(problem, optimizer::Termination{});
-        parameters.initialCombinations.push_back(start.best);
-        seedEvaluations = start.evaluations;
+    for (const std::string& name : seeds) {
+        optimizer::Result start = optimizer::makeAlgorithm(name, seed)->run(problem, optimizer::Termination{});
+        seedEvaluations += start.evaluations;
+        const auto& starts = parameters.initialCombinations;
+        const bool known = std::find(starts.begin(), starts.end(), start.best) != starts.end();
+        if (!known && int(starts.size()) < parameters.particles) parameters.initialCombinations.push_back(start.best);
     }
     result = optimizer::Gapso(parameters).run(problem, termination);
     result.evaluations += seedEvaluations;
@@ -188,6 +208,9 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
         {"scene", scene.name},
         {"view", setup.camera().name},
         {"algorithm", algorithm},
+        {"seeded_from", (algorithm == "gapso" || algorithm == "pso" || algorithm == "ga")
+                            ? nlohmann::json(seedAlgorithms(options.seedFrom))
+                            : nlohmann::json::array()},
         {"seed", seed},
         {"eval_path", options.evalPath},
         {"levels", levelMap},

@@ -39,10 +39,18 @@ struct OptimizeOptions {
     int stableIterations = 15;
     double maxSeconds = 0.0;
     bool paper = false;
+    // Comma-separated algorithms whose answers start the swarm (mckp, greedy, screensize), or
+    // "none" / empty. `optimize` defaults to "screensize,mckp" (the swarm then never returns
+    // less than the engine baseline); compare and bench default to none, so that algorithms
+    // are compared from the same random start.
     std::string seedFrom;
     int particles = 0;  // 0 = the algorithm's default
 };
 void addOptimizeOptions(CLI::App& command, OptimizeOptions& options);
+
+// The algorithms named by OptimizeOptions::seedFrom, in order, without repeats; throws
+// UsageError for a name that is not mckp, greedy or screensize.
+std::vector<std::string> seedAlgorithms(const std::string& seedFrom);
 
 // "gapso, pso, ..." for help texts; throws UsageError for an unknown name.
 std::string algorithmList();

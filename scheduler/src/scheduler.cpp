@@ -239,24 +239,25 @@ void FrameScheduler::decideFlat() {
     FrameDecision& d = mDecision;
     const double budget = mParameters.budgetMs;
     for (int o : w.visible) setLevel(o, mInitial[o]);
-    double ms = estimate(d.features);
-    if (ms <= budget) {
-        sortByImportance(false);
-        for (int o : w.order) {
-            while (d.levels[o] > 0) {
-                const int level = d.levels[o];
-                w.trial = d.features;
-                w.trial += contribution(o, level - 1);
-                w.trial -= contribution(o, level);
-                const double raised = estimate(w.trial);
-                if (raised > budget) break;  // this object's next step does not fit: try the next
-                setLevel(o, level - 1);
-                ms = raised;
-            }
-        }
-    } else {
+    const double ms = estimate(d.features);
+    if (ms > budget) {
         sortByImportance(true);
         lowerToBudget(ms, false);
+    }
+    // Raise in decreasing importance, each object as far toward level 0 as the budget allows
+    // (an object whose next step does not fit is passed over). After lowering this spends what
+    // the last, often large, step down left over: the objects just lowered do not fit a step
+    // back, more important ones may.
+    sortByImportance(false);
+    for (int o : w.order) {
+        while (d.levels[o] > 0) {
+            const int level = d.levels[o];
+            w.trial = d.features;
+            w.trial += contribution(o, level - 1);
+            w.trial -= contribution(o, level);
+            if (estimate(w.trial) > budget) break;
+            setLevel(o, level - 1);
+        }
     }
 }
 
@@ -294,6 +295,7 @@ void FrameScheduler::applySwitchControl() {
                 ms = kept;
             }
         }
+        raiseWithinRange();
         return;
     }
     // Held objects cost more than the decision wanted: lower in increasing importance, first
@@ -307,6 +309,23 @@ void FrameScheduler::applySwitchControl() {
         if (d.levels[*it] == scenes::kNotDrawn) continue;
         setLevel(*it, scenes::kNotDrawn);
         ms = estimate(d.features);
+    }
+}
+
+void FrameScheduler::raiseWithinRange() {
+    Work& w = *mWork;
+    FrameDecision& d = mDecision;
+    // w.order is in decreasing importance (applySwitchControl sorted it).
+    for (int o : w.order) {
+        if (d.levels[o] == scenes::kNotDrawn) continue;
+        while (d.levels[o] > mRange[o].finest) {
+            const int level = d.levels[o];
+            w.trial = d.features;
+            w.trial += contribution(o, level - 1);
+            w.trial -= contribution(o, level);
+            if (estimate(w.trial) > mParameters.budgetMs) break;
+            setLevel(o, level - 1);
+        }
     }
 }
 

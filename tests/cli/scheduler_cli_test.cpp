@@ -1,16 +1,27 @@
 // lodopt tune / schedule end to end on the harbor at 128x128 with a tiny calibration (seconds):
-// coefficients and both fractions reported, checkpoints and --resume, the per-frame CSV, and
-// bad input mapped to exit code 2.
+// coefficients and both fractions reported, checkpoints and --resume (tune's views; schedule's
+// frame batches, interrupted by SIGINT/SIGTERM), the per-frame CSV, and bad input mapped to
+// exit code 2.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
+
+#include "interrupt.hpp"
 
 #include "scenes/builtin.hpp"
 #include "scheduler/coefficients.hpp"
@@ -47,6 +58,106 @@ std::string readFile(const std::filesystem::path& path) {
     std::ostringstream text;
     text << file.rdbuf();
     return text.str();
+}
+
+struct Exit {
+    int code = -1;  // exit status, -1 when killed by a signal
+    std::string err;
+};
+
+// The lodopt executable as a child process (stdout to /dev/null, stderr kept), with extra
+// environment variables; `whileRunning(pid)` runs in the parent before it waits.
+Exit runChild(const std::string& arguments, const std::filesystem::path& errFile,
+              const std::vector<std::pair<std::string, std::string>>& environment = {},
+              const std::function<void(pid_t)>& whileRunning = {}) {
+    std::vector<std::string> words = {LODOPT_EXECUTABLE};
+    std::istringstream stream(arguments);
+    for (std::string word; stream >> word;) words.push_back(word);
+    std::vector<char*> argv;
+    for (std::string& word : words) argv.push_back(word.data());
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        for (const auto& [name, value] : environment) setenv(name.c_str(), value.c_str(), 1);
+        setenv("CI", "1", 1);  // no progress line
+        const int out = open("/dev/null", O_WRONLY);
+        const int err = open(errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(out, 1);
+        dup2(err, 2);
+        execv(argv[0], argv.data());
+        _exit(127);
+    }
+    if (whileRunning) whileRunning(pid);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    Exit result;
+    if (WIFEXITED(status)) result.code = WEXITSTATUS(status);
+    result.err = readFile(errFile);
+    return result;
+}
+
+// Frames saved in a schedule checkpoint (0 while it is missing or being replaced).
+std::size_t savedFrames(const std::filesystem::path& checkpoint) {
+    if (!std::filesystem::exists(checkpoint)) return 0;
+    const nlohmann::json saved = nlohmann::json::parse(readFile(checkpoint), nullptr, false);
+    return saved.is_discarded() ? 0 : saved["frames"].size();
+}
+
+// Waits (up to 60 s) until `checkpoint` holds `frames` frames, then sends `signal` to `pid`;
+// returns early when the process has ended (the caller's waitpid reaps it).
+void killAfterFrames(pid_t pid, const std::filesystem::path& checkpoint, std::size_t frames, int signal) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+        siginfo_t info{};
+        if (waitid(P_PID, pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid) return;
+        if (savedFrames(checkpoint) >= frames) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    kill(pid, signal);
+}
+
+// frames.csv as rows of cells, without the named columns (wall times).
+std::vector<std::vector<std::string>> csvWithout(const std::string& csv, const std::vector<std::string>& dropped) {
+    std::vector<std::vector<std::string>> rows;
+    std::vector<bool> keep;
+    std::istringstream lines(csv);
+    for (std::string line; std::getline(lines, line);) {
+        std::vector<std::string> cells;
+        std::stringstream cellStream(line);
+        for (std::string cell; std::getline(cellStream, cell, ',');) cells.push_back(cell);
+        if (!line.empty() && line.back() == ',') cells.push_back("");
+        if (keep.empty()) {
+            for (const std::string& cell : cells)
+                keep.push_back(std::find(dropped.begin(), dropped.end(), cell) == dropped.end());
+        }
+        std::vector<std::string> kept;
+        for (std::size_t c = 0; c < cells.size() && c < keep.size(); ++c) {
+            if (keep[c]) kept.push_back(cells[c]);
+        }
+        rows.push_back(kept);
+    }
+    return rows;
+}
+
+// One column of frames.csv as numbers (NaN for empty cells).
+std::vector<double> csvColumn(const std::string& csv, const std::string& name) {
+    const std::vector<std::vector<std::string>> rows = csvWithout(csv, {});
+    std::vector<double> values;
+    if (rows.empty()) return values;
+    const auto at = std::find(rows[0].begin(), rows[0].end(), name);
+    if (at == rows[0].end()) return values;
+    const std::size_t c = std::size_t(at - rows[0].begin());
+    for (std::size_t r = 1; r < rows.size(); ++r)
+        values.push_back(c < rows[r].size() && !rows[r][c].empty() ? std::stod(rows[r][c]) : NAN);
+    return values;
+}
+
+nlohmann::json summaryWithoutWallTimes(const std::filesystem::path& dir) {
+    nlohmann::json summary = nlohmann::json::parse(readFile(dir / "summary.json"));
+    EXPECT_TRUE(summary.contains("setup_seconds") && summary.contains("decision_us"));
+    summary.erase("setup_seconds");
+    summary.erase("decision_us");
+    return summary;
 }
 
 class SchedulerCli : public ::testing::Test {
@@ -217,4 +328,128 @@ TEST_F(SchedulerCli, BadInputExitsWithTwo) {
     EXPECT_EQ(run("tune --scene harbor --views 1 --budget-ms 5" + common).exitCode, 2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-control 1,2" + common).exitCode,
               2);
+}
+
+// ---- schedule: interrupts and --resume ----------------------------------------------------
+
+// 8 frames in batches of 2 = 4 checkpoints. Without --render every column but the decision's
+// wall time is deterministic, so a resumed run must equal an uninterrupted one.
+std::string scheduleArguments(const std::string& path, const std::string& profile, double budget,
+                              const std::string& out) {
+    return "schedule --scene harbor --path " + path + " --budget-ms " + std::to_string(budget) +
+           " --size 128x128 --batch 2 --profile " + profile + " --out " + out + " --quiet";
+}
+
+TEST_F(SchedulerCli, ScheduleInterruptedBySignalsResumesToTheSameOutputs) {
+    const std::filesystem::path whole = sDir / "schedule_whole";
+    const Exit full = runChild(scheduleArguments(sPath, sProfile, sBudget, whole.string()), sDir / "err.txt");
+    ASSERT_EQ(full.code, 0) << full.err;
+    EXPECT_FALSE(std::filesystem::exists(whole / "schedule.checkpoint.json")) << "removed at the end";
+    const std::string expectedCsv = readFile(whole / "frames.csv");
+    const nlohmann::json expectedSummary = summaryWithoutWallTimes(whole);
+
+    for (const auto& [signal, after] : {std::pair{SIGINT, 4}, std::pair{SIGTERM, 2}}) {
+        SCOPED_TRACE(strsignal(signal));
+        const std::filesystem::path out = sDir / ("schedule_cut" + std::to_string(signal));
+        const std::filesystem::path checkpoint = out / "schedule.checkpoint.json";
+        const std::string arguments = scheduleArguments(sPath, sProfile, sBudget, out.string());
+        const Exit cut = runChild(arguments, sDir / "err.txt", {{"LODOPT_TEST_WAIT_AFTER_UNITS", std::to_string(after)}},
+                                  [&](pid_t pid) { killAfterFrames(pid, checkpoint, std::size_t(after), signal); });
+        EXPECT_EQ(cut.code, lodopt::cli::kExitInterrupted) << cut.err;
+        const std::string what = std::string("schedule: interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                                 " after " + std::to_string(after) + " of 8 frames";
+        EXPECT_NE(cut.err.find(what), std::string::npos) << cut.err;
+        EXPECT_NE(cut.err.find("resume with: "), std::string::npos) << cut.err;
+        EXPECT_NE(cut.err.find(" --resume"), std::string::npos) << cut.err;
+        // Only complete files: the checkpoint with exactly the finished frames, no outputs yet.
+        EXPECT_EQ(savedFrames(checkpoint), std::size_t(after));
+        EXPECT_FALSE(std::filesystem::exists(out / "frames.csv"));
+        for (const auto& entry : std::filesystem::directory_iterator(out)) {
+            EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+        }
+        const Exit refused = runChild(arguments, sDir / "err.txt");
+        EXPECT_EQ(refused.code, 2);
+        EXPECT_NE(refused.err.find("--resume"), std::string::npos) << refused.err;
+
+        const Exit resumed = runChild(arguments + " --resume", sDir / "err.txt");
+        ASSERT_EQ(resumed.code, 0) << resumed.err;
+        EXPECT_FALSE(std::filesystem::exists(checkpoint));
+        EXPECT_EQ(csvWithout(readFile(out / "frames.csv"), {"decision_us"}), csvWithout(expectedCsv, {"decision_us"}));
+        EXPECT_EQ(summaryWithoutWallTimes(out), expectedSummary);
+    }
+}
+
+// With --render the measured times cannot repeat; the resumed run takes the saved frames'
+// measurements from the checkpoint and replays their feedback. Without feedback every other
+// column equals an uninterrupted run's; with it, the saved frames and the model's feedback
+// scale after them are restored exactly.
+TEST_F(SchedulerCli, ScheduleResumeWithRenderRestoresMeasuredFramesAndFeedback) {
+    const std::vector<std::string> measuredColumns = {"decision_us", "measured_ms", "baseline_measured_ms"};
+    const std::string render = " --render --repeats 1";
+    const std::filesystem::path whole = sDir / "render_whole";
+    const Exit full = runChild(scheduleArguments(sPath, sProfile, sBudget, whole.string()) + render + " --no-feedback",
+                               sDir / "err.txt");
+    ASSERT_EQ(full.code, 0) << full.err;
+
+    for (const bool feedback : {false, true}) {
+        SCOPED_TRACE(feedback ? "feedback" : "no feedback");
+        const std::filesystem::path out = sDir / (feedback ? "render_feedback" : "render_plain");
+        const std::filesystem::path checkpoint = out / "schedule.checkpoint.json";
+        const std::string arguments =
+            scheduleArguments(sPath, sProfile, sBudget, out.string()) + render + (feedback ? "" : " --no-feedback");
+        const Exit cut = runChild(arguments, sDir / "err.txt", {{"LODOPT_TEST_WAIT_AFTER_UNITS", "4"}},
+                                  [&](pid_t pid) { killAfterFrames(pid, checkpoint, 4, SIGINT); });
+        ASSERT_EQ(cut.code, lodopt::cli::kExitInterrupted) << cut.err;
+        const nlohmann::json saved = nlohmann::json::parse(readFile(checkpoint));
+        ASSERT_EQ(saved["frames"].size(), 4u);
+
+        const Exit resumed = runChild(arguments + " --resume", sDir / "err.txt");
+        ASSERT_EQ(resumed.code, 0) << resumed.err;
+        const std::string csv = readFile(out / "frames.csv");
+        const std::vector<double> measured = csvColumn(csv, "measured_ms");
+        const std::vector<double> scale = csvColumn(csv, "feedback_scale");
+        ASSERT_EQ(measured.size(), 8u);
+        for (std::size_t f = 0; f < 4; ++f) {
+            const double savedMs = saved["frames"][f]["measured_ms"].get<double>();
+            const double savedScale = saved["frames"][f]["feedback_scale"].get<double>();
+            EXPECT_NEAR(measured[f], savedMs, 1e-7 * savedMs) << "frame " << f;
+            EXPECT_NEAR(scale[f], savedScale, 1e-7 * savedScale) << "frame " << f;
+        }
+        if (feedback) {
+            EXPECT_NE(saved["frames"][3]["feedback_scale"].get<double>(), 1.0) << "the feedback did act";
+        } else {
+            EXPECT_EQ(csvWithout(csv, measuredColumns), csvWithout(readFile(whole / "frames.csv"), measuredColumns));
+        }
+    }
+}
+
+TEST_F(SchedulerCli, ScheduleResumeRefusesOtherOptionsOrABrokenCheckpoint) {
+    const std::filesystem::path out = sDir / "schedule_refuse";
+    const std::filesystem::path checkpoint = out / "schedule.checkpoint.json";
+    const std::string arguments = scheduleArguments(sPath, sProfile, sBudget, out.string());
+    const Exit cut = runChild(arguments, sDir / "err.txt", {{"LODOPT_TEST_WAIT_AFTER_UNITS", "2"}},
+                              [&](pid_t pid) { killAfterFrames(pid, checkpoint, 2, SIGINT); });
+    ASSERT_EQ(cut.code, lodopt::cli::kExitInterrupted) << cut.err;
+    const std::string saved = readFile(checkpoint);
+
+    const Exit otherBudget =
+        runChild(scheduleArguments(sPath, sProfile, 1.5 * sBudget, out.string()) + " --resume", sDir / "err.txt");
+    EXPECT_EQ(otherBudget.code, 2);
+    EXPECT_NE(otherBudget.err.find("--budget-ms"), std::string::npos) << otherBudget.err;
+    const Exit otherControl = runChild(arguments + " --no-switch-control --resume", sDir / "err.txt");
+    EXPECT_EQ(otherControl.code, 2);
+    EXPECT_NE(otherControl.err.find("--no-switch-control"), std::string::npos) << otherControl.err;
+
+    std::ofstream(checkpoint) << saved.substr(0, saved.size() / 2);
+    const Exit broken = runChild(arguments + " --resume", sDir / "err.txt");
+    EXPECT_EQ(broken.code, 2);
+    EXPECT_NE(broken.err.find("not a readable schedule checkpoint"), std::string::npos) << broken.err;
+
+    // The batch size changes no result: resuming with another one is accepted.
+    std::ofstream(checkpoint) << saved;
+    std::string otherBatchArguments = arguments;
+    otherBatchArguments.replace(otherBatchArguments.find("--batch 2"), 9, "--batch 3");
+    const Exit otherBatch = runChild(otherBatchArguments + " --resume", sDir / "err.txt");
+    EXPECT_EQ(otherBatch.code, 0) << otherBatch.err;
+    EXPECT_FALSE(std::filesystem::exists(checkpoint));
 }

@@ -1,0 +1,188 @@
+#include "bench_checkpoint.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "cli_common.hpp"
+
+namespace lodopt::cli {
+namespace {
+
+constexpr const char* kFormat = "lodopt-bench-checkpoint/1";
+
+// JSON writes NaN (and infinities, which no field holds) as null.
+double numberOf(const nlohmann::json& value) {
+    return value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>();
+}
+
+nlohmann::json toJson(const AlgorithmRun& run) {
+    return {{"algorithm", run.algorithm},
+            {"evaluation_budget", run.evaluationBudget},
+            {"seed", run.seed},
+            {"wall_seconds", run.wallSeconds},
+            {"fitness", run.fitness},
+            {"predicted_ms", run.predictedMs},
+            {"evaluations", run.evaluations}};
+}
+
+AlgorithmRun runFromJson(const nlohmann::json& saved) {
+    AlgorithmRun run;
+    run.algorithm = saved.at("algorithm").get<std::string>();
+    run.evaluationBudget = saved.at("evaluation_budget").get<std::int64_t>();
+    run.seed = saved.at("seed").get<std::uint64_t>();
+    run.wallSeconds = numberOf(saved.at("wall_seconds"));
+    run.fitness = numberOf(saved.at("fitness"));
+    run.predictedMs = numberOf(saved.at("predicted_ms"));
+    run.evaluations = saved.at("evaluations").get<std::int64_t>();
+    return run;
+}
+
+nlohmann::json toJson(const BestKnown& best) {
+    return {{"fitness", best.fitness},
+            {"source", best.source},
+            {"combinations", best.combinations},
+            {"evaluations", best.evaluations},
+            {"seconds", best.seconds}};
+}
+
+BestKnown bestFromJson(const nlohmann::json& saved) {
+    BestKnown best;
+    best.fitness = numberOf(saved.at("fitness"));
+    best.source = saved.at("source").get<std::string>();
+    best.combinations = numberOf(saved.at("combinations"));
+    best.evaluations = saved.at("evaluations").get<std::int64_t>();
+    best.seconds = numberOf(saved.at("seconds"));
+    return best;
+}
+
+nlohmann::json toJson(const EvalPathRow& row) {
+    return {{"path", row.path},
+            {"workload", row.workload},
+            {"mode", row.mode},
+            {"threads", row.threads},
+            {"candidates", row.candidates},
+            {"seconds", row.seconds},
+            {"evaluations_per_second", row.evaluationsPerSecond},
+            {"mean_abs_fitness_diff", row.meanAbsFitnessDiff},
+            {"max_abs_fitness_diff", row.maxAbsFitnessDiff}};
+}
+
+EvalPathRow pathFromJson(const nlohmann::json& saved) {
+    EvalPathRow row;
+    row.path = saved.at("path").get<std::string>();
+    row.workload = saved.at("workload").get<std::string>();
+    row.mode = saved.at("mode").get<std::string>();
+    row.threads = saved.at("threads").get<int>();
+    row.candidates = saved.at("candidates").get<int>();
+    row.seconds = numberOf(saved.at("seconds"));
+    row.evaluationsPerSecond = numberOf(saved.at("evaluations_per_second"));
+    row.meanAbsFitnessDiff = numberOf(saved.at("mean_abs_fitness_diff"));
+    row.maxAbsFitnessDiff = numberOf(saved.at("max_abs_fitness_diff"));
+    return row;
+}
+
+nlohmann::json toJson(const MetricsRow& row) {
+    return {{"function", row.function},
+            {"width", row.width},
+            {"height", row.height},
+            {"calls", row.calls},
+            {"microseconds_per_call", row.microsecondsPerCall},
+            {"reference", row.reference},
+            {"reference_microseconds_per_call", row.referenceMicrosecondsPerCall},
+            {"abs_deviation", row.absDeviation}};
+}
+
+MetricsRow metricsFromJson(const nlohmann::json& saved) {
+    MetricsRow row;
+    row.function = saved.at("function").get<std::string>();
+    row.width = saved.at("width").get<int>();
+    row.height = saved.at("height").get<int>();
+    row.calls = saved.at("calls").get<std::int64_t>();
+    row.microsecondsPerCall = numberOf(saved.at("microseconds_per_call"));
+    row.reference = saved.at("reference").get<std::string>();
+    row.referenceMicrosecondsPerCall = numberOf(saved.at("reference_microseconds_per_call"));
+    row.absDeviation = numberOf(saved.at("abs_deviation"));
+    return row;
+}
+
+nlohmann::json toJson(const TimeModelRow& row) {
+    return {{"model", row.model},   {"source", row.source}, {"samples", row.samples}, {"mean", row.mean},
+            {"median", row.median}, {"p90", row.p90},       {"max", row.max}};
+}
+
+TimeModelRow timeModelFromJson(const nlohmann::json& saved) {
+    TimeModelRow row;
+    row.model = saved.at("model").get<std::string>();
+    row.source = saved.at("source").get<std::string>();
+    row.samples = saved.at("samples").get<std::size_t>();
+    row.mean = numberOf(saved.at("mean"));
+    row.median = numberOf(saved.at("median"));
+    row.p90 = numberOf(saved.at("p90"));
+    row.max = numberOf(saved.at("max"));
+    return row;
+}
+
+template <typename Row>
+nlohmann::json arrayOf(const std::vector<Row>& rows) {
+    nlohmann::json array = nlohmann::json::array();
+    for (const Row& row : rows) array.push_back(toJson(row));
+    return array;
+}
+
+template <typename Read>
+auto rowsOf(const nlohmann::json& array, Read read) {
+    std::vector<decltype(read(array))> rows;
+    for (const nlohmann::json& item : array) rows.push_back(read(item));
+    return rows;
+}
+
+// Throws UsageError naming the first option of `identity` that `was` has with another value.
+void checkIdentity(const std::string& path, const nlohmann::json& was, const nlohmann::json& identity) {
+    for (auto it = identity.begin(); it != identity.end(); ++it) {
+        if (was.contains(it.key()) && was[it.key()] == it.value()) continue;
+        throw UsageError(path + ": was written with --" + it.key() + " " +
+                         (was.contains(it.key()) ? was[it.key()].dump() : std::string("(unset)")) + ", this run has " +
+                         it.value().dump() + "; resume with the same options, or delete the file to start over");
+    }
+}
+
+}  // namespace
+
+BenchCheckpoint loadBenchCheckpoint(const std::string& path, const nlohmann::json& identity) {
+    BenchCheckpoint checkpoint;
+    try {
+        std::ifstream in(path);
+        const nlohmann::json saved = nlohmann::json::parse(in);
+        if (saved.at("format") != kFormat) throw std::invalid_argument("unknown format");
+        checkIdentity(path, saved.at("options"), identity);
+        checkpoint.runs = rowsOf(saved.at("runs"), runFromJson);
+        if (saved.contains("best_known")) checkpoint.bestKnown = bestFromJson(saved["best_known"]);
+        if (saved.contains("eval_paths")) checkpoint.evalPaths = rowsOf(saved["eval_paths"], pathFromJson);
+        if (saved.contains("metrics")) checkpoint.metrics = rowsOf(saved["metrics"], metricsFromJson);
+        if (saved.contains("time_models")) {
+            const nlohmann::json& section = saved["time_models"];
+            checkpoint.timeModels = TimeModelSection{rowsOf(section.at("rows"), timeModelFromJson),
+                                                     section.at("warnings").get<std::vector<std::string>>()};
+        }
+    } catch (const UsageError&) {
+        throw;
+    } catch (const std::exception& error) {
+        throw UsageError(path + ": not a readable bench checkpoint (" + error.what() + "); delete it to start over");
+    }
+    return checkpoint;
+}
+
+void saveBenchCheckpoint(const std::string& path, const nlohmann::json& identity, const BenchCheckpoint& checkpoint) {
+    nlohmann::json saved = {{"format", kFormat}, {"options", identity}, {"runs", arrayOf(checkpoint.runs)}};
+    if (checkpoint.bestKnown) saved["best_known"] = toJson(*checkpoint.bestKnown);
+    if (checkpoint.evalPaths) saved["eval_paths"] = arrayOf(*checkpoint.evalPaths);
+    if (checkpoint.metrics) saved["metrics"] = arrayOf(*checkpoint.metrics);
+    if (checkpoint.timeModels) {
+        saved["time_models"] = {{"rows", arrayOf(checkpoint.timeModels->rows)},
+                                {"warnings", checkpoint.timeModels->warnings}};
+    }
+    writeJsonFile(path, saved);
+}
+
+}  // namespace lodopt::cli

@@ -1,0 +1,85 @@
+#include "schedule_checkpoint.hpp"
+
+#include <fstream>
+#include <limits>
+
+#include "cli_common.hpp"
+
+namespace lodopt::cli {
+namespace {
+
+constexpr const char* kFormat = "lodopt-schedule-checkpoint/1";
+
+// JSON writes NaN as null.
+double numberOf(const nlohmann::json& value) {
+    return value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>();
+}
+
+}  // namespace
+
+std::uint64_t levelsHash(const scenes::Combination& levels) {
+    std::uint64_t hash = 14695981039346656037ull;
+    for (int level : levels) {
+        hash ^= std::uint64_t(std::uint32_t(level));
+        hash *= 1099511628211ull;
+    }
+    return hash;
+}
+
+std::vector<SavedFrame> loadScheduleCheckpoint(const std::string& path, const nlohmann::json& identity) {
+    std::vector<SavedFrame> frames;
+    try {
+        std::ifstream in(path);
+        const nlohmann::json saved = nlohmann::json::parse(in);
+        if (saved.at("format") != kFormat) throw std::invalid_argument("unknown format");
+        const nlohmann::json& was = saved.at("options");
+        for (auto it = identity.begin(); it != identity.end(); ++it) {
+            if (!was.contains(it.key()) || was[it.key()] != it.value()) {
+                throw UsageError(path + ": was written with --" + it.key() + " " +
+                                 (was.contains(it.key()) ? was[it.key()].dump() : std::string("(unset)")) +
+                                 ", this run has " + it.value().dump() +
+                                 "; resume with the same options, or delete the file to start over");
+            }
+        }
+        for (const nlohmann::json& item : saved.at("frames")) {
+            SavedFrame f;
+            f.frame = item.at("frame").get<int>();
+            f.decisionMicroseconds = numberOf(item.at("decision_us"));
+            f.measuredMs = numberOf(item.at("measured_ms"));
+            f.baselineMeasuredMs = numberOf(item.at("baseline_measured_ms"));
+            f.fitness = numberOf(item.at("fitness"));
+            f.baselineFitness = numberOf(item.at("baseline_fitness"));
+            f.exactPredictedMs = numberOf(item.at("exact_predicted_ms"));
+            f.predictedMs = numberOf(item.at("predicted_ms"));
+            f.feedbackScale = numberOf(item.at("feedback_scale"));
+            f.levelsHash = item.at("levels_hash").get<std::uint64_t>();
+            frames.push_back(f);
+        }
+    } catch (const UsageError&) {
+        throw;
+    } catch (const std::exception& error) {
+        throw UsageError(path + ": not a readable schedule checkpoint (" + error.what() +
+                         "); delete it to start over");
+    }
+    return frames;
+}
+
+void saveScheduleCheckpoint(const std::string& path, const nlohmann::json& identity,
+                            const std::vector<SavedFrame>& frames) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const SavedFrame& f : frames) {
+        list.push_back({{"frame", f.frame},
+                        {"decision_us", f.decisionMicroseconds},
+                        {"measured_ms", f.measuredMs},
+                        {"baseline_measured_ms", f.baselineMeasuredMs},
+                        {"fitness", f.fitness},
+                        {"baseline_fitness", f.baselineFitness},
+                        {"exact_predicted_ms", f.exactPredictedMs},
+                        {"predicted_ms", f.predictedMs},
+                        {"feedback_scale", f.feedbackScale},
+                        {"levels_hash", f.levelsHash}});
+    }
+    writeJsonFile(path, {{"format", kFormat}, {"options", identity}, {"frames", list}});
+}
+
+}  // namespace lodopt::cli

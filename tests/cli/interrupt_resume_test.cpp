@@ -1,0 +1,431 @@
+// Interrupts and --resume of `lodopt tune` and `lodopt bench` (docs/robustness.md): each is
+// stopped by a signal after a known unit (LODOPT_TEST_WAIT_AFTER_UNITS), leaves exactly the
+// finished units in its checkpoint, refuses to start over it without --resume, and resumes
+// (with another thread count) to the outputs of an uninterrupted run, timings aside. The
+// bench checkpoint's JSON round trip is checked in-process.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "bench_checkpoint.hpp"
+#include "cli_common.hpp"
+#include "interrupt.hpp"
+#include "report_data.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Exit {
+    int code = -1;    // exit status, -1 when killed by a signal
+    int signal = 0;   // the signal that killed it, 0 when it exited
+    std::string err;  // stderr
+};
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The lodopt executable as a child process with extra environment variables; stdout and
+// stderr go to files in `dir`. `whileRunning(pid)` runs in the parent before it waits.
+Exit runLodopt(const std::string& arguments, const fs::path& dir,
+               const std::vector<std::pair<std::string, std::string>>& environment = {},
+               const std::function<void(pid_t)>& whileRunning = {}) {
+    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+    std::vector<std::string> words = {LODOPT_EXECUTABLE};
+    std::istringstream stream(arguments);
+    for (std::string word; stream >> word;) words.push_back(word);
+    std::vector<char*> argv;
+    for (std::string& word : words) argv.push_back(word.data());
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        for (const auto& [name, value] : environment) setenv(name.c_str(), value.c_str(), 1);
+        setenv("CI", "1", 1);  // no progress line
+        const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        dup2(o, 1);
+        dup2(e, 2);
+        execv(argv[0], argv.data());
+        _exit(127);
+    }
+    if (whileRunning) whileRunning(pid);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    Exit result;
+    if (WIFEXITED(status)) result.code = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
+    result.err = slurp(err);
+    return result;
+}
+
+nlohmann::json readJson(const fs::path& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+// Waits (up to 60 s) until `finished()` says the units to wait for are saved, then sends
+// `signal` to `pid`; returns early when the process has ended (the caller reaps it).
+void signalWhen(pid_t pid, const std::function<bool()>& finished, int signal) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+        siginfo_t info{};
+        if (waitid(P_PID, pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid) return;
+        if (finished()) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    kill(pid, signal);
+}
+
+void expectNoTemporaryFile(const fs::path& dir) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+    }
+}
+
+void expectInterruptMessage(const Exit& cut, int signal, const std::string& what) {
+    EXPECT_EQ(cut.code, lodopt::cli::kExitInterrupted) << cut.err;
+    const std::string expected = std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + what;
+    EXPECT_NE(cut.err.find(expected), std::string::npos) << cut.err;
+    EXPECT_NE(cut.err.find("resume with: "), std::string::npos) << cut.err;
+    EXPECT_NE(cut.err.find(" --resume"), std::string::npos) << cut.err;
+}
+
+// The fixed-coefficient device profile of robustness_test.cpp: predictions, and so the
+// searches, do not depend on this machine's speed (harbor's overview: 0.89 to 2.94 ms at 64x64).
+const char* kFixedProfile =
+    R"json({"format":"lodopt-device-profile","version":1,"created":"2025-01-01T00:00:00Z",)json"
+    R"json("machine":{"cpu_model":"test","cores":2},)json"
+    R"json("renderer":{"gl_renderer":"Mesa/X.org / llvmpipe (LLVM 15.0.6, 256 bits)",)json"
+    R"json("gl_version":"4.5 (Core Profile) Mesa 22.3.6"},"render_size":{"width":128,"height":128},)json"
+    R"json("scene":{"name":"harbor","seed":1},"calibration":{"seed":3,"viewpoints":8,)json"
+    R"json("held_out_viewpoints":4,"fit_samples":12,"held_out_samples":12,"timing":{"clock":"wall-min",)json"
+    R"json("rounds":1,"repeats_per_round":1,"warmup":1,"median_spread":0.0,"p90_spread":0.0,)json"
+    R"json("seconds":0.0}},"default_model":"linear","models":[{"name":"linear","fitted":true,)json"
+    R"json("coefficients":{"intercept_ms":0.5,"vertices":0.0,"triangles":2e-05,"texture_bytes":0.0,)json"
+    R"json("draw_calls":0.01,"pixels":1e-05,"drawn_objects":0.0,"matrices":0.0,"bounding_boxes":0.0,)json"
+    R"json("visible_triangles":4e-05,"raster_pixels":0.0,"edge_pixels":2e-05,"shaded_pixels":0.0},)json"
+    R"json("fit":{"samples":0,"rms_residual_ms":0.0,"condition_number":0.0,"pairs":0,"skipped_pairs":0,)json"
+    R"json("iterations":0,"notes":[],"errors":{"count":0,"mean":0.0,"median":0.0,"p90":0.0,"max":0.0}},)json"
+    R"json("held_out_errors":{"count":0,"mean":0.0,"median":0.0,"p90":0.0,"max":0.0}}],)json"
+    R"json("feature_names":["vertices","triangles","texture_bytes","draw_calls","pixels","drawn_objects",)json"
+    R"json("matrices","bounding_boxes","visible_triangles","raster_pixels","edge_pixels","shaded_pixels"],)json"
+    R"json("samples":[]})json";
+
+class InterruptResume : public testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+        mDir = fs::temp_directory_path() / ("lodopt-resume-" + std::to_string(::getpid()) + "-" + info->name());
+        fs::remove_all(mDir);
+        fs::create_directories(mDir);
+        std::ofstream(mDir / "profile.json") << kFixedProfile;
+        mProfile = " --profile " + (mDir / "profile.json").string() + " ";
+    }
+    void TearDown() override { fs::remove_all(mDir); }
+    fs::path mDir;
+    std::string mProfile;  // " --profile <fixed profile> "
+};
+
+// ---- tune: one unit per view ---------------------------------------------------------------
+
+const char* kTune =
+    "tune --scene harbor --views 4 --evals 12 --max-iterations 4 --search-evals 10 --size 64x64 --budget-ms 2 "
+    "--quiet --out ";
+
+std::size_t viewFiles(const fs::path& dir) {
+    std::size_t count = 0;
+    if (!fs::is_directory(dir)) return 0;
+    for (const auto& entry : fs::directory_iterator(dir)) count += entry.path().extension() == ".json" ? 1 : 0;
+    return count;
+}
+
+// coeffs.json without what may differ between an uninterrupted and a resumed run: timings,
+// the checkpoint folder's name and whether a view was resumed.
+nlohmann::json tuneResult(const fs::path& file) {
+    nlohmann::json document = readJson(file);
+    nlohmann::json& tuning = document["tuning"];
+    for (const char* key : {"seconds", "checkpoints"}) {
+        EXPECT_TRUE(tuning.contains(key)) << key;
+        tuning.erase(key);
+    }
+    for (nlohmann::json& view : tuning["per_view"]) {
+        view.erase("optimizer_seconds");
+        view.erase("resumed");
+    }
+    return document;
+}
+
+TEST_F(InterruptResume, TuneStopsAfterAViewAndResumesToTheSameCoefficients) {
+    const fs::path whole = mDir / "whole" / "coeffs.json";
+    const Exit full = runLodopt(kTune + whole.string() + mProfile + " --threads 2", mDir);
+    ASSERT_EQ(full.code, 0) << full.err;
+    const nlohmann::json expected = tuneResult(whole);
+    ASSERT_EQ(expected["tuning"]["per_view"].size(), 4u);
+
+    const fs::path out = mDir / "cut" / "coeffs.json";
+    const fs::path views = mDir / "cut" / "coeffs_views";
+    const Exit cut = runLodopt(kTune + out.string() + mProfile + " --threads 2", mDir,
+                               {{"LODOPT_TEST_WAIT_AFTER_UNITS", "2"}}, [&](pid_t pid) {
+                                   signalWhen(
+                                       pid, [&] { return viewFiles(views) >= 2; }, SIGINT);
+                               });
+    expectInterruptMessage(cut, SIGINT, " after 2 of 4 views; the finished ones are saved in " + views.string());
+    // Exactly the finished views, each complete; no coefficients file yet; no temporary file.
+    EXPECT_EQ(viewFiles(views), 2u);
+    for (const char* name : {"view_000.json", "view_001.json"}) {
+        EXPECT_EQ(readJson(views / name)["format"], "lodopt-tune-view") << name;
+    }
+    EXPECT_FALSE(fs::exists(out));
+    expectNoTemporaryFile(views);
+
+    // Without --resume the saved views are not silently overwritten.
+    const Exit refused = runLodopt(kTune + out.string() + mProfile, mDir);
+    EXPECT_EQ(refused.code, 2);
+    EXPECT_NE(refused.err.find("add --resume"), std::string::npos) << refused.err;
+    // Another result-changing option is refused by name.
+    const Exit changed = runLodopt(kTune + out.string() + mProfile + " --seed 9 --resume", mDir);
+    EXPECT_EQ(changed.code, 2);
+    EXPECT_NE(changed.err.find("--seed"), std::string::npos) << changed.err;
+    EXPECT_EQ(viewFiles(views), 2u);
+
+    const Exit resumed = runLodopt(kTune + out.string() + mProfile + " --threads 1 --resume", mDir);
+    ASSERT_EQ(resumed.code, 0) << resumed.err;
+    const nlohmann::json perView = readJson(out)["tuning"]["per_view"];
+    ASSERT_EQ(perView.size(), 4u);
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(perView[k]["resumed"].get<bool>(), k < 2) << "view " << k;
+    EXPECT_EQ(tuneResult(out), expected);
+    EXPECT_EQ(viewFiles(views), 4u);  // tune keeps its checkpoints for later runs
+
+    // The tune finished (coeffs.json is newer than its views): the same command again, without
+    // --resume, starts over instead of refusing, and gives the same coefficients.
+    const Exit again = runLodopt(kTune + out.string() + mProfile + " --threads 2", mDir);
+    ASSERT_EQ(again.code, 0) << again.err;
+    for (const nlohmann::json& view : readJson(out)["tuning"]["per_view"]) EXPECT_FALSE(view["resumed"].get<bool>());
+    EXPECT_EQ(tuneResult(out), expected);
+    EXPECT_EQ(viewFiles(views), 4u);
+
+    // A broken checkpoint is bad input, not a crash.
+    const std::string saved = slurp(views / "view_000.json");
+    std::ofstream(views / "view_000.json") << saved.substr(0, saved.size() / 2);
+    const Exit broken = runLodopt(kTune + out.string() + mProfile + " --resume", mDir);
+    EXPECT_EQ(broken.code, 2);
+    EXPECT_NE(broken.err.find("not a tune checkpoint"), std::string::npos) << broken.err;
+}
+
+// ---- bench: one unit per grid run, then best known, paths, metrics, time models -------------
+
+// random (2 seeds) and greedy (1) at one budget: 3 runs + 4 sections = 7 units.
+const char* kBench =
+    "bench --scene harbor --size 64x64 --quick --algos random,greedy --evals 20 --candidates 4 --timing-frames 2 "
+    "--quiet --out ";
+constexpr std::size_t kBenchUnits = 7;
+
+std::size_t savedUnits(const nlohmann::json& checkpoint) {
+    std::size_t units = checkpoint["runs"].size();
+    for (const char* section : {"best_known", "eval_paths", "metrics", "time_models"}) {
+        units += checkpoint.contains(section) ? 1 : 0;
+    }
+    return units;
+}
+
+// The columns of a CSV that do not depend on timing, as JSON rows.
+nlohmann::json csvColumns(const fs::path& file, const std::vector<std::string>& columns) {
+    const lodopt::cli::CsvTable table = lodopt::cli::readCsv(file.string());
+    nlohmann::json rows = nlohmann::json::array();
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        nlohmann::json row;
+        for (const std::string& column : columns) {
+            EXPECT_TRUE(table.has(column)) << file << ": " << column;
+            if (table.has(column)) row[column] = table.text(r, column);
+        }
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+// Everything deterministic a bench writes: fitness, gaps, evaluation counts, fast-vs-full
+// differences, metric deviations, the calibration rows and sample counts of the time models.
+nlohmann::json benchResult(const fs::path& dir) {
+    nlohmann::json document = readJson(dir / "bench.json");
+    for (const char* key : {"seconds", "eval_paths", "metrics", "time_model_errors", "out"}) document.erase(key);
+    document["best_known"].erase("exhaustive_seconds");
+    document["surrogate_table"].erase("seconds");
+    for (nlohmann::json& row : document["algorithm_budget"]) row.erase("median_wall_seconds");
+    document["runs_csv"] = csvColumns(dir / "bench_runs.csv", {"algorithm", "evaluation_budget", "seed", "fitness",
+                                                               "gap", "evaluations", "predicted_ms"});
+    document["algorithms_csv"] =
+        csvColumns(dir / "bench_algorithms.csv", {"algorithm", "evaluation_budget", "runs", "median_gap", "min_gap",
+                                                  "max_gap", "median_fitness", "median_evaluations"});
+    // A restored section keeps the thread count it was measured with: not compared.
+    document["paths_csv"] = csvColumns(dir / "bench_eval_paths.csv", {"path", "workload", "mode", "candidates",
+                                                                      "mean_abs_fitness_diff", "max_abs_fitness_diff"});
+    document["metrics_csv"] =
+        csvColumns(dir / "bench_metrics.csv", {"function", "width", "height", "reference", "abs_deviation"});
+    document["time_csv"] = csvColumns(dir / "bench_timemodel.csv", {"model", "source", "samples"});
+    return document;
+}
+
+std::string csvNumber(double value) {
+    std::ostringstream out;
+    out << std::setprecision(8) << value;  // as bench writes its CSVs
+    return out.str();
+}
+
+TEST_F(InterruptResume, BenchStopsAfterAUnitAndResumesToTheSameTables) {
+    const fs::path whole = mDir / "whole";
+    const Exit full = runLodopt(kBench + whole.string() + mProfile + " --threads 1", mDir);
+    ASSERT_EQ(full.code, 0) << full.err;
+    EXPECT_FALSE(fs::exists(whole / "bench.checkpoint.json")) << "removed once the outputs are written";
+    const nlohmann::json expected = benchResult(whole);
+    ASSERT_EQ(expected["runs_csv"].size(), 3u);
+
+    struct Case {
+        int signal;
+        std::size_t after;
+    };
+    // In the grid, after the best-known search and the evaluation paths, after the metrics.
+    for (const Case& c : {Case{SIGTERM, 2}, Case{SIGINT, 5}, Case{SIGKILL, 6}}) {
+        SCOPED_TRACE(strsignal(c.signal));
+        const fs::path out = mDir / ("cut" + std::to_string(c.signal));
+        const fs::path checkpoint = out / "bench.checkpoint.json";
+        auto saved = [&] {
+            if (!fs::exists(checkpoint)) return false;
+            const nlohmann::json json = nlohmann::json::parse(slurp(checkpoint), nullptr, false);
+            return !json.is_discarded() && savedUnits(json) >= c.after;
+        };
+        const Exit cut = runLodopt(kBench + out.string() + mProfile + " --threads 2", mDir,
+                                   {{"LODOPT_TEST_WAIT_AFTER_UNITS", std::to_string(c.after)}},
+                                   [&](pid_t pid) { signalWhen(pid, saved, c.signal); });
+        if (c.signal == SIGKILL) {
+            EXPECT_EQ(cut.signal, SIGKILL);
+        } else {
+            expectInterruptMessage(cut, c.signal,
+                                   " after " + std::to_string(c.after) + " of " + std::to_string(kBenchUnits) +
+                                       " units; the finished ones are saved in " + checkpoint.string());
+        }
+        const nlohmann::json units = readJson(checkpoint);
+        EXPECT_EQ(savedUnits(units), c.after);
+        EXPECT_EQ(units["runs"].size(), std::min<std::size_t>(c.after, 3));
+        EXPECT_FALSE(fs::exists(out / "bench.json"));
+        EXPECT_FALSE(fs::exists(out / "bench_runs.csv"));
+        expectNoTemporaryFile(out);
+
+        const Exit refused = runLodopt(kBench + out.string() + mProfile, mDir);
+        EXPECT_EQ(refused.code, 2);
+        EXPECT_NE(refused.err.find("add --resume"), std::string::npos) << refused.err;
+
+        const Exit resumed = runLodopt(kBench + out.string() + mProfile + " --threads 1 --resume", mDir);
+        ASSERT_EQ(resumed.code, 0) << resumed.err;
+        EXPECT_FALSE(fs::exists(checkpoint));
+        EXPECT_EQ(benchResult(out), expected);
+        // The saved runs were taken from the checkpoint, not run again: their wall times are
+        // the interrupted process's.
+        const lodopt::cli::CsvTable runs = lodopt::cli::readCsv((out / "bench_runs.csv").string());
+        for (std::size_t r = 0; r < units["runs"].size(); ++r) {
+            EXPECT_EQ(runs.text(r, "wall_seconds"), csvNumber(units["runs"][r]["wall_seconds"].get<double>())) << r;
+        }
+    }
+}
+
+TEST_F(InterruptResume, BenchResumeRefusesOtherOptionsAndABrokenCheckpoint) {
+    const fs::path out = mDir / "out";
+    const fs::path checkpoint = out / "bench.checkpoint.json";
+    const Exit cut =
+        runLodopt(kBench + out.string() + mProfile, mDir, {{"LODOPT_TEST_WAIT_AFTER_UNITS", "1"}}, [&](pid_t pid) {
+            signalWhen(
+                pid, [&] { return fs::exists(checkpoint); }, SIGINT);
+        });
+    ASSERT_EQ(cut.code, lodopt::cli::kExitInterrupted) << cut.err;
+    const std::string saved = slurp(checkpoint);
+
+    std::string other = kBench;
+    other.replace(other.find("--candidates 4"), 14, "--candidates 5");
+    const Exit changed = runLodopt(other + out.string() + mProfile + " --resume", mDir);
+    EXPECT_EQ(changed.code, 2);
+    EXPECT_NE(changed.err.find("--candidates"), std::string::npos) << changed.err;
+    EXPECT_EQ(slurp(checkpoint), saved) << "a refused resume leaves the checkpoint alone";
+
+    std::ofstream(checkpoint) << saved.substr(0, saved.size() / 2);
+    const Exit broken = runLodopt(kBench + out.string() + mProfile + " --resume", mDir);
+    EXPECT_EQ(broken.code, 2);
+    EXPECT_NE(broken.err.find("not a readable bench checkpoint"), std::string::npos) << broken.err;
+}
+
+// In-process: every double of every unit comes back bit for bit, NaN included.
+TEST(BenchCheckpoint, DoublesRoundTripExactly) {
+    using namespace lodopt::cli;
+    const double awkward[] = {0.1 + 0.2, 1.0 / 3.0, 5e-324, 1.7976931348623157e308, -0.0, 0.9820709083698521};
+    BenchCheckpoint written;
+    for (std::size_t i = 0; i < std::size(awkward); ++i) {
+        written.runs.push_back(
+            {"gapso", 30, i + 1, awkward[i], awkward[(i + 1) % 6], awkward[(i + 2) % 6], std::int64_t(i) * 7, 0.0});
+    }
+    written.bestKnown = BestKnown{awkward[0], "exhaustive", 150.0, 103, awkward[1]};
+    written.evalPaths = std::vector<EvalPathRow>{{"full", "random", "single", 1, 4, awkward[2], awkward[3], NAN, NAN},
+                                                 {"fast", "walk", "batch", 2, 4, awkward[4], awkward[5], 1e-17, 0.0}};
+    MetricsRow ssim{"ssim", 64, 64, 12, awkward[1], "OpenCV", awkward[0], 1.67e-14};
+    MetricsRow recall{"precision_recall", 64, 64, 9, awkward[3], "", NAN, NAN};
+    written.metrics = std::vector<MetricsRow>{ssim, recall};
+    written.timeModels = TimeModelSection{{{"linear", "this view, timed now", 2, awkward[0], awkward[1], NAN, 0.5}},
+                                          {"the profile was measured at 128x128"}};
+    const fs::path file =
+        fs::temp_directory_path() / ("lodopt-bench-checkpoint-" + std::to_string(::getpid()) + ".json");
+    const nlohmann::json identity = {{"scene", "harbor"}, {"candidates", 4}};
+    saveBenchCheckpoint(file.string(), identity, written);
+    const BenchCheckpoint read = loadBenchCheckpoint(file.string(), identity);
+
+    auto same = [](double a, double b) {
+        return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b));
+    };
+    ASSERT_EQ(read.runs.size(), written.runs.size());
+    for (std::size_t i = 0; i < read.runs.size(); ++i) {
+        EXPECT_EQ(read.runs[i].seed, written.runs[i].seed);
+        EXPECT_EQ(read.runs[i].evaluations, written.runs[i].evaluations);
+        EXPECT_TRUE(same(read.runs[i].wallSeconds, written.runs[i].wallSeconds)) << i;
+        EXPECT_TRUE(same(read.runs[i].fitness, written.runs[i].fitness)) << i;
+        EXPECT_TRUE(same(read.runs[i].predictedMs, written.runs[i].predictedMs)) << i;
+    }
+    ASSERT_TRUE(read.bestKnown && read.evalPaths && read.metrics && read.timeModels);
+    EXPECT_TRUE(same(read.bestKnown->fitness, awkward[0]));
+    EXPECT_EQ(read.bestKnown->evaluations, 103);
+    ASSERT_EQ(read.evalPaths->size(), 2u);
+    EXPECT_TRUE(std::isnan((*read.evalPaths)[0].maxAbsFitnessDiff));
+    EXPECT_TRUE(same((*read.evalPaths)[1].evaluationsPerSecond, awkward[5]));
+    EXPECT_TRUE(same((*read.evalPaths)[1].meanAbsFitnessDiff, 1e-17));
+    EXPECT_EQ((*read.evalPaths)[1].threads, 2);
+    ASSERT_EQ(read.metrics->size(), 2u);
+    EXPECT_TRUE(same((*read.metrics)[0].absDeviation, 1.67e-14));
+    EXPECT_TRUE(std::isnan((*read.metrics)[1].referenceMicrosecondsPerCall));
+    ASSERT_EQ(read.timeModels->rows.size(), 1u);
+    EXPECT_TRUE(same(read.timeModels->rows[0].median, awkward[1]));
+    EXPECT_TRUE(std::isnan(read.timeModels->rows[0].p90));
+    EXPECT_EQ(read.timeModels->warnings, written.timeModels->warnings);
+
+    // Written with other options: refused, naming the option.
+    try {
+        loadBenchCheckpoint(file.string(), {{"scene", "harbor"}, {"candidates", 5}});
+        ADD_FAILURE() << "no UsageError";
+    } catch (const UsageError& error) {
+        EXPECT_NE(std::string(error.what()).find("--candidates 4, this run has 5"), std::string::npos) << error.what();
+    }
+    fs::remove(file);
+}
+
+}  // namespace
