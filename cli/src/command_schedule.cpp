@@ -64,8 +64,9 @@ nlohmann::json checkpointIdentity(const ScheduleOptions& o, const scheduler::Sch
             {"scene-seed", o.sceneSeed},
             {"path", o.path},
             {"budget-ms", o.budgetMs},
-            {"coeffs", {{"file", o.coefficients},
-                        {"values", nlohmann::json::parse(scheduler::coefficientsToJson(parameters.coefficients))}}},
+            {"coeffs",
+             {{"file", o.coefficients},
+              {"values", nlohmann::json::parse(scheduler::coefficientsToJson(parameters.coefficients))}}},
             {"render", o.render},
             {"no-fitness", o.noFitness},
             {"no-baseline", o.noBaseline},
@@ -209,8 +210,9 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     std::vector<SavedFrame> restored;
     if (std::filesystem::exists(checkpoint)) {
         if (!options.resume) {
-            throw UsageError(checkpoint + " holds the frames of an interrupted schedule: add --resume to continue "
-                                          "it, or delete the file to start over");
+            throw UsageError(checkpoint +
+                             " holds the frames of an interrupted schedule: add --resume to continue "
+                             "it, or delete the file to start over");
         }
         restored = loadScheduleCheckpoint(checkpoint, identity);
     } else if (options.resume && !output.quiet && !output.json) {
@@ -460,7 +462,8 @@ void addScheduleCommand(CLI::App& app) {
         ->check(CLI::IsMember({"bounds", "exact"}))
         ->capture_default_str();
     command->add_flag("--no-switch-control", options->noSwitchControl, "Switch levels freely (no hysteresis)");
-    command->add_option("--switch-control", options->switchControl, "Switch control D1,K1,D2,K2,NEAR[,MAXDWELL] (defaults 1,0.5,0.2,1,0,1)");
+    command->add_option("--switch-control", options->switchControl,
+                        "Switch control D1,K1,D2,K2,NEAR (default 1,0.5,0.2,1,0)");
     command->add_flag("--no-feedback", options->noFeedback, "With --render: do not correct the model");
     command->add_option("--feedback-beta", options->beta, "Feedback gain beta, DONG15 eq. 9")
         ->check(CLI::Range(1e-6, 0.999999))

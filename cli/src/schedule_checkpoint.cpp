@@ -58,8 +58,7 @@ std::vector<SavedFrame> loadScheduleCheckpoint(const std::string& path, const nl
     } catch (const UsageError&) {
         throw;
     } catch (const std::exception& error) {
-        throw UsageError(path + ": not a readable schedule checkpoint (" + error.what() +
-                         "); delete it to start over");
+        throw UsageError(path + ": not a readable schedule checkpoint (" + error.what() + "); delete it to start over");
     }
     return frames;
 }

@@ -129,18 +129,15 @@ void parseSwitchControl(const std::string& text, scheduler::SwitchControlParamet
             values.push_back(std::stod(item, &used));
             if (used != item.size()) throw std::invalid_argument(item);
         } catch (const std::exception&) {
-            throw UsageError("--switch-control: '" + item +
-                             "' is not a number (expected D1,K1,D2,K2,NEAR[,MAXDWELL])");
+            throw UsageError("--switch-control: '" + item + "' is not a number (expected D1,K1,D2,K2,NEAR)");
         }
     }
-    if (values.size() != 5 && values.size() != 6)
-        throw UsageError("--switch-control: expected five or six numbers D1,K1,D2,K2,NEAR[,MAXDWELL]");
+    if (values.size() != 5) throw UsageError("--switch-control: expected five numbers D1,K1,D2,K2,NEAR");
     p.delta1 = values[0];
     p.k1 = values[1];
     p.delta2 = values[2];
     p.k2 = values[3];
     p.nearDistance = values[4];
-    if (values.size() == 6) p.maxDwellSeconds = values[5];
     try {
         scheduler::validateSwitchControl(p);
     } catch (const std::invalid_argument& error) {

@@ -27,8 +27,7 @@ scenes::CameraPath defaultCameraPath(const scenes::Scene& scene);
 scheduler::FeatureMode parseFeatureMode(const std::string& text);
 // "flat" | "tiles"; throws UsageError.
 scheduler::Organisation parseOrganisation(const std::string& text);
-// "D1,K1,D2,K2,NEAR[,MAXDWELL]" into switch-control parameters (MAXDWELL may be "inf");
-// throws UsageError.
+// "D1,K1,D2,K2,NEAR" into switch-control parameters; throws UsageError.
 void parseSwitchControl(const std::string& text, scheduler::SwitchControlParameters& parameters);
 // A coefficients file; throws UsageError with the file's message.
 scheduler::SchedulerCoefficients loadCoefficientsOrThrow(const std::string& path);

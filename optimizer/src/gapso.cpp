@@ -40,12 +40,16 @@ void requireProbability(double value, const char* name) {
 
 // Roulette selection keeping round(keep * N) particles without replacement; the other slots
 // are refilled by clones of kept particles drawn by roulette with replacement.
-void select(std::vector<Particle>& swarm, double keep, Random& random) {
+void select(std::vector<Particle>& swarm, double keep, bool windowed, Random& random) {
     const std::size_t count = swarm.size();
     std::vector<double> fitness(count);
     for (std::size_t k = 0; k < count; ++k) fitness[k] = swarm[k].fitness;
     std::vector<double> weights(count);
-    rouletteWeights(fitness, weights);
+    if (windowed) {
+        windowedRouletteWeights(fitness, weights);
+    } else {
+        rouletteWeights(fitness, weights);
+    }
 
     const auto keepCount =
         std::clamp<std::size_t>(static_cast<std::size_t>(std::lround(keep * static_cast<double>(count))), 1, count);
@@ -161,6 +165,7 @@ GapsoParameters GapsoParameters::paper(std::uint64_t seed) {
     parameters.cognitive = 2.0;
     parameters.social = 2.0;
     parameters.stagnationKick = false;
+    parameters.windowedRoulette = false;
     parameters.seed = seed;
     return parameters;
 }
@@ -258,7 +263,7 @@ Result Gapso::run(const Problem& problem, const Termination& termination) const 
     while (!state.endIteration(mean)) {
         // Selection needs measured fitness, so it comes first; crossover and mutation come
         // after the move so that their changes are evaluated rather than pulled back.
-        if (p.ga) select(swarm, p.selectionKeep, random);
+        if (p.ga) select(swarm, p.selectionKeep, p.windowedRoulette, random);
         if (p.pso) move(swarm, state.best().combination, levelCounts, maxVelocity, p, random);
         if (p.ga) {
             crossover(swarm, p.crossoverProbability, random);
@@ -282,6 +287,19 @@ void rouletteWeights(std::span<const double> fitness, std::span<double> weights)
         sum += weights[k];
     }
     if (!(sum > 0.0) || !std::isfinite(sum)) std::fill(weights.begin(), weights.end(), 1.0);
+}
+
+void windowedRouletteWeights(std::span<const double> fitness, std::span<double> weights) {
+    assert(fitness.size() == weights.size());
+    if (fitness.empty()) return;
+    const bool finite = std::all_of(fitness.begin(), fitness.end(), [](double f) { return std::isfinite(f); });
+    const auto [low, high] = std::minmax_element(fitness.begin(), fitness.end());
+    const double range = *high - *low;
+    if (!finite || !(range > 0.0) || !std::isfinite(range)) {
+        std::fill(weights.begin(), weights.end(), 1.0);
+        return;
+    }
+    for (std::size_t k = 0; k < fitness.size(); ++k) weights[k] = fitness[k] - *low + 0.05 * range;
 }
 
 std::size_t rouletteSpin(std::span<const double> weights, Random& random) {

@@ -26,7 +26,6 @@ void validateSwitchControl(const SwitchControlParameters& p) {
     check(std::isfinite(p.delta2) && p.delta2 >= 0.0, "delta2", p.delta2, "finite and >= 0");
     check(std::isfinite(p.k2) && p.k2 >= 0.0, "k2", p.k2, "finite and >= 0");
     check(std::isfinite(p.nearDistance) && p.nearDistance >= 0.0, "near", p.nearDistance, "finite and >= 0");
-    check(p.maxDwellSeconds > 0.0, "maxDwellSeconds", p.maxDwellSeconds, "> 0 (may be infinite)");
 }
 
 std::vector<double> simplificationRates(const std::vector<double>& triangles) {
@@ -44,7 +43,7 @@ LevelRange allowedLevels(int current, double secondsSinceSwitch, double distance
     if (!p.enabled) return {0, levels - 1};
     const double x = std::max(distance - p.nearDistance, 0.0);
     // 0^0 = 1 in std::pow, so k = 0 gives the constant bound δ, as the formula reads.
-    const double dwell = std::min(p.delta2 * std::pow(x, p.k2), p.maxDwellSeconds);
+    const double dwell = p.delta2 * std::pow(x, p.k2);
     if (!(secondsSinceSwitch > dwell)) return {current, current};
     const double maxRateChange = p.delta1 * std::pow(x, p.k1);
     LevelRange range{current, current};

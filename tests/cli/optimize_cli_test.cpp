@@ -144,3 +144,28 @@ TEST_F(OptimizeCli, BadOptionsAreUsageErrors) {
     EXPECT_EQ(lodopt("optimize --budget-ms 4 --weights a,b").exitCode, 2);
     EXPECT_EQ(lodopt("optimize").exitCode, 2);  // --budget-ms is required
 }
+
+// The default optimize starts its swarm from screensize's and mckp's answers, so on every
+// harbor view and a tight budget (and a deliberately short search) it never scores below the
+// engine baseline; unseeded (`--seed-from none`) it runs from a random swarm.
+TEST_F(OptimizeCli, DefaultOptimizerNeverLosesToScreensize) {
+    for (const char* view : {"overview", "ship_close", "aircraft_chase", "far"}) {
+        SCOPED_TRACE(view);
+        // At 128x128 the shipped profile predicts 0.23-0.57 ms all-coarsest, 1.0-2.5 ms all-finest.
+        const std::string common = std::string(" --scene harbor --size 128x128 --quiet --max-iterations 2 --view ") +
+                                   view + " --budget-ms 0.9";
+        ASSERT_EQ(lodopt("optimize" + common + " --out " + (dir / "seeded").string()).exitCode, 0);
+        ASSERT_EQ(lodopt("optimize" + common + " --algo screensize --out " + (dir / "engine").string()).exitCode, 0);
+        ASSERT_EQ(lodopt("optimize" + common + " --seed-from none --out " + (dir / "unseeded").string()).exitCode, 0);
+        const nlohmann::json seeded = readJson(dir / "seeded" / "result.json");
+        const nlohmann::json engine = readJson(dir / "engine" / "result.json");
+        const nlohmann::json unseeded = readJson(dir / "unseeded" / "result.json");
+        EXPECT_EQ(seeded["seeded_from"], nlohmann::json::array({"screensize", "mckp"}));
+        EXPECT_EQ(unseeded["seeded_from"], nlohmann::json::array());
+        EXPECT_GE(seeded["search_fitness"].get<double>(), engine["search_fitness"].get<double>());
+        EXPECT_LE(seeded["predicted_ms"].get<double>(), 0.9);
+        EXPECT_LT(engine["search_fitness"].get<double>(), 1.0) << "the budget should force coarser levels";
+    }
+    EXPECT_EQ(lodopt("optimize --budget-ms 4 --seed-from magic --out " + (dir / "x").string()).exitCode, 2);
+    EXPECT_EQ(lodopt("optimize --budget-ms 4 --seed-from mckp,nope --out " + (dir / "x").string()).exitCode, 2);
+}

@@ -22,7 +22,6 @@
 #include <thread>
 
 #include "interrupt.hpp"
-
 #include "scenes/builtin.hpp"
 #include "scheduler/coefficients.hpp"
 #include "timemodel/features.hpp"
@@ -353,8 +352,9 @@ TEST_F(SchedulerCli, ScheduleInterruptedBySignalsResumesToTheSameOutputs) {
         const std::filesystem::path out = sDir / ("schedule_cut" + std::to_string(signal));
         const std::filesystem::path checkpoint = out / "schedule.checkpoint.json";
         const std::string arguments = scheduleArguments(sPath, sProfile, sBudget, out.string());
-        const Exit cut = runChild(arguments, sDir / "err.txt", {{"LODOPT_TEST_WAIT_AFTER_UNITS", std::to_string(after)}},
-                                  [&](pid_t pid) { killAfterFrames(pid, checkpoint, std::size_t(after), signal); });
+        const Exit cut =
+            runChild(arguments, sDir / "err.txt", {{"LODOPT_TEST_WAIT_AFTER_UNITS", std::to_string(after)}},
+                     [&](pid_t pid) { killAfterFrames(pid, checkpoint, std::size_t(after), signal); });
         EXPECT_EQ(cut.code, lodopt::cli::kExitInterrupted) << cut.err;
         const std::string what = std::string("schedule: interrupted by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
                                  " after " + std::to_string(after) + " of 8 frames";

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 #include <map>
 
 #include "fixtures.hpp"
@@ -67,6 +68,27 @@ TEST(Roulette, WeightsHandleZeroNegativeAndEqualFitness) {
     EXPECT_EQ(weights, (std::vector<double>{1.0, 1.0, 1.0}));
     rouletteWeights(std::vector<double>{0.5, 0.5, 0.5}, weights);
     EXPECT_EQ(weights, (std::vector<double>{0.5, 0.5, 0.5}));
+}
+
+// The default window: fitness values within a few percent of each other (as fused fitness of
+// one swarm is) still give the best particle most of the weight; the paper's F / sum F does not.
+TEST(Roulette, WindowedWeightsKeepSelectionPressureOnCloseFitness) {
+    std::vector<double> weights(3);
+    windowedRouletteWeights(std::vector<double>{0.93, 0.95, 0.94}, weights);
+    EXPECT_NEAR(weights[0], 0.001, 1e-12);  // the worst keeps 5% of the range
+    EXPECT_NEAR(weights[1], 0.021, 1e-12);
+    EXPECT_NEAR(weights[2], 0.011, 1e-12);
+    EXPECT_GT(weights[1] / (weights[0] + weights[1] + weights[2]), 0.6);
+    rouletteWeights(std::vector<double>{0.93, 0.95, 0.94}, weights);
+    EXPECT_LT(weights[1] / (weights[0] + weights[1] + weights[2]), 0.34);
+    windowedRouletteWeights(std::vector<double>{0.5, 0.5}, std::span<double>(weights.data(), 2));
+    EXPECT_EQ(weights[0], 1.0);
+    EXPECT_EQ(weights[1], 1.0);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    windowedRouletteWeights(std::vector<double>{0.5, nan, 0.7}, weights);
+    EXPECT_EQ(weights, (std::vector<double>{1.0, 1.0, 1.0}));
+    EXPECT_TRUE(GapsoParameters{}.windowedRoulette);
+    EXPECT_FALSE(GapsoParameters::paper().windowedRoulette);
 }
 
 TEST(Roulette, SpinFollowsTheWeightsAndNeverPicksAZeroWeight) {

@@ -24,8 +24,13 @@
 // needs fitness, and only the positions before the move have one, so we select first; and
 // crossover and mutation stay after the move so that the move does not pull their changes
 // straight back before they are evaluated.
-// Roulette weights (rouletteWeights): F itself when every F >= 0 and sum F > 0; F - min F
-// when some F < 0; uniform when all weights are 0 (all-equal fitness).
+// Roulette weights: with `windowedRoulette` (default) F - min F + 5% of the range
+// (windowedRouletteWeights); the paper's p_i = F_i / sum F (rouletteWeights, `--paper`) is F
+// itself when every F >= 0 and sum F > 0, F - min F when some F < 0, uniform when all weights
+// are 0. Why the default differs: fused fitness values of one swarm lie within a few percent
+// of each other (0.93-0.95 on the forest), so F / sum F is nearly uniform and selection
+// replaces 30% of the swarm with random clones (diversity lost, no pressure gained); the window
+// restores the pressure the paper's operator intends (docs/optimizer.md has the comparison).
 // `pso` alone is plain PSO, `ga` alone a GA with these operators.
 #pragma once
 
@@ -51,6 +56,7 @@ struct GapsoParameters {
     double crossoverProbability = 0.15;  // [0, 1], per pair
     double mutationProbability = 0.15;   // [0, 1], per particle
     bool stagnationKick = true;          // perturb particles that sit on the global best
+    bool windowedRoulette = true;        // selection weights F - min F (+5% of range); paper: F
     std::uint64_t seed = 1;
     // Optional starting particles (e.g. the mckp solution for "--seed-from mckp"), at most
     // `particles`, repaired to the budget; the other particles start uniformly at random.
@@ -80,6 +86,8 @@ private:
 // Selection weights for fitnesses `fitness` (finite), written to `weights` (same size): the
 // rule in the header comment. Every weight is >= 0 and at least one is > 0 (when not empty).
 void rouletteWeights(std::span<const double> fitness, std::span<double> weights);
+// F_i - min F + 0.05 (max F - min F); uniform when all F are equal (or any is not finite).
+void windowedRouletteWeights(std::span<const double> fitness, std::span<double> weights);
 
 // Index drawn with probability weights[k] / sum(weights); uniform when the sum is 0.
 // `weights` not empty, every entry >= 0.

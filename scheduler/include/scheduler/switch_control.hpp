@@ -1,6 +1,6 @@
 // Distance-dependent LOD-switch control (VMI20 §7, method.md §7): an object changes level only
 // if
-//     Δrate < δ1 (dist − near)^k1      and      Δtime_since_last_switch > min(δ2 (dist − near)^k2, cap),
+//     Δrate < δ1 (dist − near)^k1      and      Δtime_since_last_switch > δ2 (dist − near)^k2,
 // so near objects change in small steps and far objects change rarely.
 //   rate   the level's simplification rate, 1 − triangles(level) / triangles(0), in [0, 1];
 //          Δrate the rates' difference between the current and the new level;
@@ -28,10 +28,6 @@ struct SwitchControlParameters {
     double delta2 = 0.2;        // >= 0, seconds: dwell time at (dist − near) = 1
     double k2 = 1.0;            // >= 0: growth of the dwell time with distance
     double nearDistance = 0.0;  // >= 0, in the distance thresholds' unit
-    // > 0, seconds (may be +inf): ours, the dwell time never exceeds it. Without a cap a far
-    // object (100 radii: 20 s) freezes at whatever level it last took, and in the city, with
-    // hundreds of far buildings held, their frozen share of the budget starves the near ones.
-    double maxDwellSeconds = 1.0;
 };
 
 // Throws std::invalid_argument naming the first parameter out of its range.
