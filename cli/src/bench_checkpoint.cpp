@@ -137,15 +137,6 @@ auto rowsOf(const nlohmann::json& array, Read read) {
     return rows;
 }
 
-// Throws UsageError naming the first option of `identity` that `was` has with another value.
-void checkIdentity(const std::string& path, const nlohmann::json& was, const nlohmann::json& identity) {
-    for (auto it = identity.begin(); it != identity.end(); ++it) {
-        if (was.contains(it.key()) && was[it.key()] == it.value()) continue;
-        throw UsageError(path + ": was written with --" + it.key() + " " +
-                         (was.contains(it.key()) ? was[it.key()].dump() : std::string("(unset)")) + ", this run has " +
-                         it.value().dump() + "; resume with the same options, or delete the file to start over");
-    }
-}
 
 }  // namespace
 

@@ -31,6 +31,11 @@ void printJson(const nlohmann::json& document);
 // Writes `document` atomically to `path`.
 void writeJsonFile(const std::string& path, const nlohmann::json& document);
 
+// For --resume: throws UsageError naming the first option of `identity` (the options that
+// change a long command's results) that the checkpoint at `path` saved (`was`) with another
+// value or not at all.
+void checkIdentity(const std::string& path, const nlohmann::json& was, const nlohmann::json& identity);
+
 // Parses "0,2,1" into integers; throws UsageError naming `what`.
 std::vector<int> parseIntList(const std::string& text, const std::string& what);
 // Parses "512x512".

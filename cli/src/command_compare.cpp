@@ -128,15 +128,7 @@ std::map<std::string, RunRecord> loadCheckpoint(const std::string& path, const n
         std::ifstream in(path);
         const nlohmann::json saved = nlohmann::json::parse(in);
         if (saved.at("format") != kCheckpointFormat) throw std::invalid_argument("unknown format");
-        const nlohmann::json& was = saved.at("options");
-        for (auto it = identity.begin(); it != identity.end(); ++it) {
-            if (!was.contains(it.key()) || was[it.key()] != it.value()) {
-                throw UsageError(path + ": was written with --" + it.key() + " " +
-                                 (was.contains(it.key()) ? was[it.key()].dump() : std::string("(unset)")) +
-                                 ", this run has " + it.value().dump() +
-                                 "; resume with the same options, or delete the file to start over");
-            }
-        }
+        checkIdentity(path, saved.at("options"), identity);
         for (const nlohmann::json& item : saved.at("runs")) {
             RunRecord run = runFromJson(item);
             runs[runKey(run.algorithm, run.seed)] = std::move(run);

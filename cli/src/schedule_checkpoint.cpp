@@ -32,15 +32,7 @@ std::vector<SavedFrame> loadScheduleCheckpoint(const std::string& path, const nl
         std::ifstream in(path);
         const nlohmann::json saved = nlohmann::json::parse(in);
         if (saved.at("format") != kFormat) throw std::invalid_argument("unknown format");
-        const nlohmann::json& was = saved.at("options");
-        for (auto it = identity.begin(); it != identity.end(); ++it) {
-            if (!was.contains(it.key()) || was[it.key()] != it.value()) {
-                throw UsageError(path + ": was written with --" + it.key() + " " +
-                                 (was.contains(it.key()) ? was[it.key()].dump() : std::string("(unset)")) +
-                                 ", this run has " + it.value().dump() +
-                                 "; resume with the same options, or delete the file to start over");
-            }
-        }
+        checkIdentity(path, saved.at("options"), identity);
         for (const nlohmann::json& item : saved.at("frames")) {
             SavedFrame f;
             f.frame = item.at("frame").get<int>();

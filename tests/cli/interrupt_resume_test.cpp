@@ -23,6 +23,7 @@
 #include <thread>
 
 #include "bench_checkpoint.hpp"
+#include "child_process.hpp"
 #include "cli_common.hpp"
 #include "interrupt.hpp"
 #include "report_data.hpp"
@@ -31,66 +32,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Exit {
-    int code = -1;    // exit status, -1 when killed by a signal
-    int signal = 0;   // the signal that killed it, 0 when it exited
-    std::string err;  // stderr
-};
+using lodopt::cli_test::Exit;
+using lodopt::cli_test::readJson;
+using lodopt::cli_test::signalWhen;
+using lodopt::cli_test::slurp;
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// The lodopt executable as a child process with extra environment variables; stdout and
-// stderr go to files in `dir`. `whileRunning(pid)` runs in the parent before it waits.
-Exit runLodopt(const std::string& arguments, const fs::path& dir,
-               const std::vector<std::pair<std::string, std::string>>& environment = {},
+// The lodopt executable as a child process; stdout and stderr go to files in `dir`.
+Exit runLodopt(const std::string& arguments, const fs::path& dir, const lodopt::cli_test::Environment& environment = {},
                const std::function<void(pid_t)>& whileRunning = {}) {
-    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    std::vector<std::string> words = {LODOPT_EXECUTABLE};
-    std::istringstream stream(arguments);
-    for (std::string word; stream >> word;) words.push_back(word);
-    std::vector<char*> argv;
-    for (std::string& word : words) argv.push_back(word.data());
-    argv.push_back(nullptr);
-    const pid_t pid = fork();
-    if (pid == 0) {
-        for (const auto& [name, value] : environment) setenv(name.c_str(), value.c_str(), 1);
-        setenv("CI", "1", 1);  // no progress line
-        const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(o, 1);
-        dup2(e, 2);
-        execv(argv[0], argv.data());
-        _exit(127);
-    }
-    if (whileRunning) whileRunning(pid);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    Exit result;
-    if (WIFEXITED(status)) result.code = WEXITSTATUS(status);
-    if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
-    result.err = slurp(err);
-    return result;
-}
-
-nlohmann::json readJson(const fs::path& path) {
-    std::ifstream in(path);
-    return nlohmann::json::parse(in);
-}
-
-// Waits (up to 60 s) until `finished()` says the units to wait for are saved, then sends
-// `signal` to `pid`; returns early when the process has ended (the caller reaps it).
-void signalWhen(pid_t pid, const std::function<bool()>& finished, int signal) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (std::chrono::steady_clock::now() < deadline) {
-        siginfo_t info{};
-        if (waitid(P_PID, pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid) return;
-        if (finished()) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    kill(pid, signal);
+    return lodopt::cli_test::runLodoptChild(lodopt::cli_test::splitWords(arguments), dir / "stdout.txt",
+                                            dir / "stderr.txt", environment, whileRunning);
 }
 
 void expectNoTemporaryFile(const fs::path& dir) {

@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../fuzz/fuzz_metrics_input.hpp"
+#include "child_process.hpp"
 #include "interrupt.hpp"
 #include "scenes/gltf_io.hpp"
 #include "scenes/mesh_builder.hpp"
@@ -30,62 +31,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Exit {
-    int code = -1;    // exit status, -1 when killed by a signal
-    int signal = 0;   // the signal that killed it, 0 when it exited
-    std::string out;  // stdout
-    std::string err;  // stderr
-};
+using lodopt::cli_test::Exit;
+using lodopt::cli_test::readJson;
+using lodopt::cli_test::slurp;
 
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// The lodopt executable as a child process with extra environment variables; stdout and
-// stderr go to files in `dir`. `whileRunning(pid)` runs in the parent before it waits.
+// The lodopt executable as a child process; stdout and stderr go to files in `dir`.
 Exit runLodopt(const std::vector<std::string>& arguments, const fs::path& dir,
-               const std::vector<std::pair<std::string, std::string>>& environment = {},
+               const lodopt::cli_test::Environment& environment = {},
                const std::function<void(pid_t)>& whileRunning = {}) {
-    const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-    std::vector<std::string> words = {LODOPT_EXECUTABLE};
-    words.insert(words.end(), arguments.begin(), arguments.end());
-    std::vector<char*> argv;
-    for (std::string& word : words) argv.push_back(word.data());
-    argv.push_back(nullptr);
-    const pid_t pid = fork();
-    if (pid == 0) {
-        for (const auto& [name, value] : environment) setenv(name.c_str(), value.c_str(), 1);
-        setenv("CI", "1", 1);  // no progress line
-        const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(o, 1);
-        dup2(e, 2);
-        execv(argv[0], argv.data());
-        _exit(127);
-    }
-    if (whileRunning) whileRunning(pid);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    Exit result;
-    if (WIFEXITED(status)) result.code = WEXITSTATUS(status);
-    if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
-    result.out = slurp(out);
-    result.err = slurp(err);
-    return result;
+    return lodopt::cli_test::runLodoptChild(arguments, dir / "stdout.txt", dir / "stderr.txt", environment,
+                                            whileRunning);
 }
 
-std::vector<std::string> split(const std::string& text) {
-    std::istringstream stream(text);
-    std::vector<std::string> words;
-    for (std::string word; stream >> word;) words.push_back(word);
-    return words;
-}
-
-nlohmann::json readJson(const fs::path& path) {
-    std::ifstream in(path);
-    return nlohmann::json::parse(in);
-}
+std::vector<std::string> split(const std::string& text) { return lodopt::cli_test::splitWords(text); }
 
 // Drops the named CSV columns (by header) from every row.
 std::string withoutColumns(const std::string& csv, const std::vector<std::string>& names) {
@@ -214,20 +172,16 @@ void expectSameCompare(const CompareOutput& a, const CompareOutput& b) {
     EXPECT_EQ(a.curves, b.curves);
 }
 
-// Waits (up to 60 s) until `checkpoint` lists `runs` runs, then sends `signal` to `pid`;
-// returns early when the process has ended (the caller's waitpid reaps it).
+// Sends `signal` to `pid` once `checkpoint` lists `runs` runs (or the process has ended).
 void killAfterRuns(pid_t pid, const fs::path& checkpoint, std::size_t runs, int signal) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (std::chrono::steady_clock::now() < deadline) {
-        siginfo_t info{};
-        if (waitid(P_PID, pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid) return;
-        if (fs::exists(checkpoint)) {
+    lodopt::cli_test::signalWhen(
+        pid,
+        [&] {
+            if (!fs::exists(checkpoint)) return false;
             const nlohmann::json saved = nlohmann::json::parse(slurp(checkpoint), nullptr, false);
-            if (!saved.is_discarded() && saved["runs"].size() >= runs) break;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    kill(pid, signal);
+            return !saved.is_discarded() && saved["runs"].size() >= runs;
+        },
+        signal);
 }
 
 // A compare interrupted after unit k by each signal, then resumed (with another thread count):

@@ -21,6 +21,7 @@
 #include <sstream>
 #include <thread>
 
+#include "child_process.hpp"
 #include "interrupt.hpp"
 #include "scenes/builtin.hpp"
 #include "scheduler/coefficients.hpp"
@@ -59,40 +60,14 @@ std::string readFile(const std::filesystem::path& path) {
     return text.str();
 }
 
-struct Exit {
-    int code = -1;  // exit status, -1 when killed by a signal
-    std::string err;
-};
+using lodopt::cli_test::Exit;
 
-// The lodopt executable as a child process (stdout to /dev/null, stderr kept), with extra
-// environment variables; `whileRunning(pid)` runs in the parent before it waits.
+// The lodopt executable as a child process (stdout to /dev/null, stderr kept).
 Exit runChild(const std::string& arguments, const std::filesystem::path& errFile,
-              const std::vector<std::pair<std::string, std::string>>& environment = {},
+              const lodopt::cli_test::Environment& environment = {},
               const std::function<void(pid_t)>& whileRunning = {}) {
-    std::vector<std::string> words = {LODOPT_EXECUTABLE};
-    std::istringstream stream(arguments);
-    for (std::string word; stream >> word;) words.push_back(word);
-    std::vector<char*> argv;
-    for (std::string& word : words) argv.push_back(word.data());
-    argv.push_back(nullptr);
-    const pid_t pid = fork();
-    if (pid == 0) {
-        for (const auto& [name, value] : environment) setenv(name.c_str(), value.c_str(), 1);
-        setenv("CI", "1", 1);  // no progress line
-        const int out = open("/dev/null", O_WRONLY);
-        const int err = open(errFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        dup2(out, 1);
-        dup2(err, 2);
-        execv(argv[0], argv.data());
-        _exit(127);
-    }
-    if (whileRunning) whileRunning(pid);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    Exit result;
-    if (WIFEXITED(status)) result.code = WEXITSTATUS(status);
-    result.err = readFile(errFile);
-    return result;
+    return lodopt::cli_test::runLodoptChild(lodopt::cli_test::splitWords(arguments), "/dev/null", errFile, environment,
+                                            whileRunning);
 }
 
 // Frames saved in a schedule checkpoint (0 while it is missing or being replaced).
@@ -102,17 +77,9 @@ std::size_t savedFrames(const std::filesystem::path& checkpoint) {
     return saved.is_discarded() ? 0 : saved["frames"].size();
 }
 
-// Waits (up to 60 s) until `checkpoint` holds `frames` frames, then sends `signal` to `pid`;
-// returns early when the process has ended (the caller's waitpid reaps it).
+// Sends `signal` to `pid` once `checkpoint` holds `frames` frames (or the process has ended).
 void killAfterFrames(pid_t pid, const std::filesystem::path& checkpoint, std::size_t frames, int signal) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (std::chrono::steady_clock::now() < deadline) {
-        siginfo_t info{};
-        if (waitid(P_PID, pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid) return;
-        if (savedFrames(checkpoint) >= frames) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    kill(pid, signal);
+    lodopt::cli_test::signalWhen(pid, [&] { return savedFrames(checkpoint) >= frames; }, signal);
 }
 
 // frames.csv as rows of cells, without the named columns (wall times).
