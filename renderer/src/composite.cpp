@@ -1,7 +1,10 @@
-// Rebuilding a frame from per-object layers by nearest depth.
+// Rebuilding a frame from per-object layers by nearest depth, optionally reporting what changed.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
+#include <utility>
+#include <vector>
 
 #include "renderer/renderer.hpp"
 
@@ -58,6 +61,88 @@ void applyLayer(const Layer& layer, PixelRect rect, Frame& out) {
     }
 }
 
+PixelRect clippedToFrame(PixelRect rect, const Frame& out) {
+    return {std::max(rect.x0, 0), std::max(rect.y0, 0), std::min(rect.x1, out.width), std::min(rect.y1, out.height)};
+}
+
+// Pixels per row chunk: scratch rows live on the stack.
+constexpr int kChunk = 512;
+
+// The layers that reach `rect`, still in object order (the order the depth test needs).
+std::vector<const Layer*> layersReaching(const std::vector<const Layer*>& layers, PixelRect rect) {
+    std::vector<const Layer*> reaching;
+    for (const Layer* layer : layers) {
+        if (!layer || layer->rect.empty()) continue;
+        const PixelRect& r = layer->rect;
+        if (r.x0 < rect.x1 && rect.x0 < r.x1 && r.y0 < rect.y1 && rect.y0 < r.y1) reaching.push_back(layer);
+    }
+    return reaching;
+}
+
+// Composites row y, columns [x0, x0 + n) with n <= kChunk, into `color` and `depth` with the
+// same per-pixel operations as clearRect + applyLayer, so the values are identical.
+void compositeRowChunk(const std::vector<const Layer*>& layers, int y, int x0, int n, std::uint32_t clear,
+                       std::uint32_t* color, float* depth) {
+    std::fill_n(color, n, clear);
+    std::fill_n(depth, n, 1.0f);
+    for (const Layer* layer : layers) {
+        const PixelRect& r = layer->rect;
+        if (y < r.y0 || y >= r.y1) continue;
+        const int a = std::max(x0, r.x0), b = std::min(x0 + n, r.x1);
+        if (a >= b) continue;
+        const std::size_t l = std::size_t(y - r.y0) * r.width() + (a - r.x0);
+        // A mask instead of a branch, and __restrict (the layer and the scratch row never
+        // alias): both are needed for GCC to vectorize the select.
+        const float* __restrict layerDepth = &layer->depth[l];
+        const std::uint8_t* __restrict layerColor = &layer->rgba[l * 4];
+        float* __restrict rowDepth = depth + (a - x0);
+        std::uint32_t* __restrict rowColor = color + (a - x0);
+        for (int i = 0; i < b - a; ++i) {
+            const float near = layerDepth[i], far = rowDepth[i];
+            const std::uint32_t nearer = 0u - std::uint32_t(near < far);
+            std::uint32_t source;
+            std::memcpy(&source, layerColor + std::size_t(i) * 4, 4);
+            rowDepth[i] = near < far ? near : far;
+            rowColor[i] = (source & nearer) | (rowColor[i] & ~nearer);
+        }
+    }
+}
+
+// Sets bit `row` of columns[i] for each of the n pixels whose color changed from `before` to
+// `now`; true when any did. memcmp first: most rows of a recomposited region are unchanged.
+bool markChangedColumns(const std::uint32_t* now, const std::uint8_t* before, int n, int row,
+                        std::uint32_t* columns) {
+    if (std::memcmp(now, before, std::size_t(n) * 4) == 0) return false;
+    for (int i = 0; i < n; ++i) {
+        std::uint32_t old;
+        std::memcpy(&old, before + std::size_t(i) * 4, 4);
+        columns[i] |= std::uint32_t(now[i] != old) << row;
+    }
+    return true;
+}
+
+// Appends the tight rectangle of each run of marked columns in [x0, x1) of the band starting
+// at row `bandTop`, runs less than `splitGap` unmarked columns apart joined, and clears the marks.
+void appendColumnRuns(std::uint32_t* columns, int x0, int x1, int bandTop, int splitGap,
+                      std::vector<PixelRect>& changed) {
+    for (int x = x0; x < x1;) {
+        if (!columns[x]) {
+            ++x;
+            continue;
+        }
+        const int start = x;
+        int end = x;  // one past the last marked column of the run
+        std::uint32_t rows = 0;
+        for (int gap = 0; x < x1 && gap < splitGap; ++x) {
+            gap = columns[x] ? 0 : gap + 1;
+            if (columns[x]) end = x + 1;
+            rows |= columns[x];
+            columns[x] = 0;
+        }
+        changed.push_back({start, bandTop + std::countr_zero(rows), end, bandTop + 32 - std::countl_zero(rows)});
+    }
+}
+
 }  // namespace
 
 void composite(const std::vector<const Layer*>& layers, int width, int height, glm::vec4 clearColor, Frame& out) {
@@ -69,15 +154,77 @@ void composite(const std::vector<const Layer*>& layers, int width, int height, g
 }
 
 void compositeRect(const std::vector<const Layer*>& layers, PixelRect rect, glm::vec4 clearColor, Frame& out) {
-    rect.x0 = std::max(rect.x0, 0);
-    rect.y0 = std::max(rect.y0, 0);
-    rect.x1 = std::min(rect.x1, out.width);
-    rect.y1 = std::min(rect.y1, out.height);
+    rect = clippedToFrame(rect, out);
     if (rect.empty()) return;
     clearRect(rect, clearColor, out);
     for (const Layer* layer : layers) {
         if (layer && !layer->rect.empty()) applyLayer(*layer, rect, out);
     }
+}
+
+std::vector<RowSpan> coveredRowSpans(const Layer& layer) {
+    const PixelRect& r = layer.rect;
+    std::vector<RowSpan> spans(std::size_t(r.height()));
+    for (int y = 0; y < r.height(); ++y) {
+        const float* depth = &layer.depth[std::size_t(y) * r.width()];
+        int first = 0, last = r.width();
+        while (first < last && !(depth[first] < 1.0f)) ++first;
+        while (last > first && !(depth[last - 1] < 1.0f)) --last;
+        if (first < last) spans[std::size_t(y)] = {r.x0 + first, r.x0 + last};
+    }
+    return spans;
+}
+
+void compositeSpansChanges(const std::vector<const Layer*>& layers, int top, std::span<const RowSpan> spans,
+                           glm::vec4 clearColor, ChangeGrid grid, Frame& out, std::vector<PixelRect>& changed) {
+    const int rowBegin = std::max(top, 0);
+    const int rowEnd = std::min(top + int(spans.size()), out.height);
+    if (rowBegin >= rowEnd) return;
+    const int bandRows = std::clamp(grid.bandRows, 1, 32), splitGap = std::max(grid.splitGap, 1);
+    PixelRect hull{out.width, rowBegin, 0, rowEnd};
+    for (int y = rowBegin; y < rowEnd; ++y) {
+        const RowSpan& span = spans[std::size_t(y - top)];
+        if (!span.empty()) hull = {std::min(hull.x0, span.x0), rowBegin, std::max(hull.x1, span.x1), rowEnd};
+    }
+    hull = clippedToFrame(hull, out);
+    if (hull.empty()) return;
+    const std::vector<const Layer*> reaching = layersReaching(layers, hull);
+    std::uint8_t clearBytes[4];
+    clearColorBytes(clearColor, clearBytes);
+    std::uint32_t clear;
+    std::memcpy(&clear, clearBytes, 4);
+    std::uint32_t color[kChunk];
+    float depth[kChunk];
+    std::vector<std::uint32_t> columns(std::size_t(out.width), 0);  // per column, the band's changed rows
+    // Bands counted from `top`, so that the caller's band grid does not depend on clipping.
+    for (int bandTop = top + (rowBegin - top) / bandRows * bandRows; bandTop < rowEnd; bandTop += bandRows) {
+        const int bandBottom = std::min(rowEnd, bandTop + bandRows);
+        int changedX0 = out.width, changedX1 = 0;  // columns the band's changes span
+        for (int y = std::max(bandTop, rowBegin); y < bandBottom; ++y) {
+            const RowSpan& span = spans[std::size_t(y - top)];
+            const int x0 = std::max(span.x0, 0), x1 = std::min(span.x1, out.width);
+            for (int x = x0; x < x1; x += kChunk) {
+                const int n = std::min(kChunk, x1 - x);
+                compositeRowChunk(reaching, y, x, n, clear, color, depth);
+                const std::size_t at = std::size_t(y) * out.width + x;
+                std::uint8_t* frameColor = &out.rgba[at * 4];
+                if (markChangedColumns(color, frameColor, n, y - bandTop, &columns[std::size_t(x)])) {
+                    changedX0 = std::min(changedX0, x);
+                    changedX1 = std::max(changedX1, x + n);
+                }
+                std::memcpy(frameColor, color, std::size_t(n) * 4);
+                std::memcpy(&out.depth[at], depth, std::size_t(n) * sizeof(float));
+            }
+        }
+        appendColumnRuns(columns.data(), changedX0, changedX1, bandTop, splitGap, changed);
+    }
+}
+
+void compositeRectChanges(const std::vector<const Layer*>& layers, PixelRect rect, glm::vec4 clearColor, ChangeGrid grid,
+                          Frame& out, std::vector<PixelRect>& changed) {
+    if (rect.empty()) return;
+    const std::vector<RowSpan> spans(std::size_t(rect.height()), RowSpan{rect.x0, rect.x1});
+    compositeSpansChanges(layers, rect.y0, spans, clearColor, grid, out, changed);
 }
 
 }  // namespace lodopt::renderer

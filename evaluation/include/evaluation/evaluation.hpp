@@ -12,10 +12,11 @@
 //  3. the remaining objects become the optimizer's variables; variable i's option j is the
 //     scene level optionLevels[i][j] (option 0 the finest distinct level).
 //
-// Fast path (LayerEvaluator, the default): a candidate is composited from the layers, only in
-// the rectangles of objects whose level changed since the state's previous candidate, and the
-// metrics are updated incrementally in those rectangles. Per-thread states make batches
-// parallel; because the incremental metrics equal a from-scratch computation to the bit, the
+// Fast path (LayerEvaluator, the default): a candidate is composited from the layers, only
+// where an object whose level changed since the state's previous candidate covers pixels (per
+// row, its old and new layers' covered columns), and the metrics are updated incrementally only
+// around the pixels whose color actually changed (tight rectangles per band of rows, merged
+// where one update is cheaper). Per-thread states make batches parallel; because the incremental metrics equal a from-scratch computation to the bit, the
 // scores do not depend on the order or the thread count.
 // Full path (FullRenderEvaluator, `--eval full`): render the whole combination with OpenGL
 // and compute the metrics from scratch; serial (one GL context).
@@ -79,6 +80,8 @@ public:
     optimizer::Combination fromScene(const scenes::Combination& combination) const;
     // The layer of object `object` at scene level `level`.
     const renderer::Layer& layer(int object, int level) const { return mLayers[object][level]; }
+    // Its covered columns per row of layer(object, level).rect (renderer::coveredRowSpans).
+    const std::vector<renderer::RowSpan>& coverage(int object, int level) const { return mCoverage[object][level]; }
 
     double setupSeconds() const { return mSetupSeconds; }
 
@@ -88,6 +91,7 @@ private:
     glm::vec4 mClearColor;
     renderer::Frame mReference;
     std::vector<std::vector<renderer::Layer>> mLayers;  // [object][level]
+    std::vector<std::vector<std::vector<renderer::RowSpan>>> mCoverage;  // [object][level][row]
     std::vector<ObjectSetup> mObjects;
     std::vector<int> mVariableObjects;
     SkipSummary mSkip;
@@ -100,10 +104,17 @@ const std::vector<std::string>& componentNames();
 // fidelities, precision, recall).
 optimizer::Score toScore(const metrics::MetricResult& result);
 
+// Where the fast path updates the metrics after a level change. Both give identical scores.
+enum class DirtyRegions {
+    ChangedPixels,  // tight rectangles around the pixels whose color changed (default)
+    ObjectBounds,   // the changed objects' whole bounding rectangles: the earlier way, kept to measure against
+};
+
 // The fast path. `threads` >= 1 states evaluate a batch in parallel.
 class LayerEvaluator final : public optimizer::Evaluator {
 public:
-    LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads = 1);
+    LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads = 1,
+                   DirtyRegions regions = DirtyRegions::ChangedPixels);
     ~LayerEvaluator() override;
 
     optimizer::Score evaluate(const optimizer::Combination& combination) override;

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,34 @@ private:
 void composite(const std::vector<const Layer*>& layers, int width, int height, glm::vec4 clearColor, Frame& out);
 // Recomposites only `rect` of `out` (which already holds a composite of the same size).
 void compositeRect(const std::vector<const Layer*>& layers, PixelRect rect, glm::vec4 clearColor, Frame& out);
+// One row's columns [x0, x1); empty when x0 >= x1.
+struct RowSpan {
+    int x0 = 0, x1 = 0;
+    bool empty() const { return x0 >= x1; }
+};
+// Per row of `layer.rect`, top to bottom, the columns from its first to its last covered
+// pixel (depth < 1), in frame coordinates: where a level change of that layer can act.
+std::vector<RowSpan> coveredRowSpans(const Layer& layer);
+
+// How compositeSpansChanges reports changed pixels: per band of `bandRows` rows, one tight
+// rectangle per cluster of changed columns, clusters at least `splitGap` unchanged columns
+// apart reported apart (each rectangle costs its consumer a fixed overhead plus a margin).
+struct ChangeGrid {
+    int bandRows = 8;   // 1..32
+    int splitGap = 32;  // >= 1
+};
+// Recomposites rows [top, top + spans.size()) of `out`, row top + i over spans[i] (clipped to
+// the frame), like compositeRect, and says where the color changed so that callers can skip
+// the pixels that did not: the rows are cut into bands of grid.bandRows from `top`; for each
+// band in which some pixel's RGBA differs from what `out` held before, the tight bounding
+// rectangle of each cluster of changed columns (see ChangeGrid) is appended to `changed`, bands
+// top to bottom, clusters left to right. Together they cover every pixel whose color changed.
+// Depth is written as compositeRect writes it, but a depth-only change is not reported.
+void compositeSpansChanges(const std::vector<const Layer*>& layers, int top, std::span<const RowSpan> spans,
+                           glm::vec4 clearColor, ChangeGrid grid, Frame& out, std::vector<PixelRect>& changed);
+// compositeSpansChanges over a whole rectangle.
+void compositeRectChanges(const std::vector<const Layer*>& layers, PixelRect rect, glm::vec4 clearColor, ChangeGrid grid,
+                          Frame& out, std::vector<PixelRect>& changed);
 
 // The clear color as the renderer writes it (RGBA8).
 void clearColorBytes(glm::vec4 clearColor, std::uint8_t out[4]);

@@ -1,0 +1,100 @@
+// The fast path re-scores only around changed pixels; its scores after random walks of level
+// changes must equal, to the bit, a from-scratch evaluation of a fresh composite, the earlier
+// whole-rectangle fast path, and (within the composite's tolerance) the full render path.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "evaluation/evaluation.hpp"
+#include "scenes/builtin.hpp"
+
+using namespace lodopt;
+
+namespace {
+
+metrics::ImageView viewOf(const renderer::Frame& frame) {
+    return metrics::makeImageView(frame.rgba.data(), frame.width, frame.height, 4);
+}
+
+// The combination's image composited from scratch, independent of any evaluator state.
+renderer::Frame freshComposite(const evaluation::ViewSetup& setup, const optimizer::Combination& combination) {
+    const scenes::Combination levels = setup.toScene(combination);
+    std::vector<const renderer::Layer*> layers;
+    for (std::size_t o = 0; o < levels.size(); ++o) layers.push_back(&setup.layer(int(o), levels[o]));
+    renderer::Frame frame;
+    renderer::composite(layers, setup.width(), setup.height(), setup.clearColor(), frame);
+    return frame;
+}
+
+void expectSameScore(const optimizer::Score& a, const optimizer::Score& b, const std::string& what) {
+    EXPECT_EQ(a.fitness, b.fitness) << what;
+    ASSERT_EQ(a.componentCount, b.componentCount) << what;
+    for (int c = 0; c < a.componentCount; ++c) EXPECT_EQ(a.components[c], b.components[c]) << what << " component " << c;
+}
+
+// A random walk: each step sets 1–3 random variables to random options (sometimes their
+// current one, so some steps change nothing). Every few steps a large jump changes half.
+std::vector<optimizer::Combination> randomWalk(const std::vector<int>& counts, int steps, unsigned seed) {
+    std::mt19937 random(seed);
+    std::vector<optimizer::Combination> walk;
+    optimizer::Combination current(counts.size(), 0);
+    for (int k = 0; k < steps; ++k) {
+        const int changes = k % 25 == 24 ? int(counts.size()) / 2 : 1 + int(random() % 3);
+        for (int c = 0; c < changes; ++c) {
+            const std::size_t v = random() % counts.size();
+            current[v] = int(random() % counts[v]);
+        }
+        walk.push_back(current);
+    }
+    return walk;
+}
+
+}  // namespace
+
+TEST(FastPathExactness, RandomWalksOnForestMatchFromScratchScoresToTheBit) {
+    scenes::Scene scene = scenes::loadScene("forest");
+    renderer::RenderSettings settings;
+    settings.width = settings.height = 128;
+    renderer::Renderer renderer(scene, settings);
+    metrics::MetricParameters parameters;
+    for (const scenes::Camera& camera : {scene.views[0], scene.views[2]}) {  // dense, edge
+        evaluation::ViewSetup setup(scene, camera, renderer);
+        const std::vector<int> counts = setup.levelCounts();
+        ASSERT_GE(counts.size(), 5u) << camera.name;
+        evaluation::LayerEvaluator fast(setup, parameters);
+        evaluation::LayerEvaluator bounds(setup, parameters, 1, evaluation::DirtyRegions::ObjectBounds);
+        evaluation::FullRenderEvaluator full(setup, renderer, parameters);
+        double worstFull = 0.0;
+        const std::vector<optimizer::Combination> walk = randomWalk(counts, 120, 21);
+        for (std::size_t k = 0; k < walk.size(); ++k) {
+            const std::string what = camera.name + " step " + std::to_string(k);
+            const optimizer::Score score = fast.evaluate(walk[k]);
+            const renderer::Frame expected = freshComposite(setup, walk[k]);
+            ASSERT_EQ(fast.imageOf(walk[k]).rgba, expected.rgba) << what;
+            expectSameScore(score, evaluation::toScore(metrics::evaluate(viewOf(expected), viewOf(setup.reference()), parameters)),
+                            what + " vs from scratch");
+            expectSameScore(score, bounds.evaluate(walk[k]), what + " vs whole rectangles");
+            if (k % 10 == 0) {
+                const double difference = std::abs(score.fitness - full.evaluate(walk[k]).fitness);
+                worstFull = std::max(worstFull, difference);
+                EXPECT_LT(difference, 1e-3) << what << " vs full render";
+            }
+        }
+        std::cout << camera.name << ": max |fast - full render| = " << worstFull << "\n";
+    }
+}
+
+TEST(FastPathExactness, ThreadedBatchesMatchTheSerialWalk) {
+    scenes::Scene scene = scenes::loadScene("forest");
+    renderer::RenderSettings settings;
+    settings.width = settings.height = 96;
+    renderer::Renderer renderer(scene, settings);
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    metrics::MetricParameters parameters;
+    const std::vector<optimizer::Combination> walk = randomWalk(setup.levelCounts(), 60, 5);
+    evaluation::LayerEvaluator serial(setup, parameters, 1);
+    evaluation::LayerEvaluator threaded(setup, parameters, 3);
+    std::vector<optimizer::Score> batch(walk.size());
+    threaded.evaluateBatch(walk, batch);
+    for (std::size_t k = 0; k < walk.size(); ++k) expectSameScore(serial.evaluate(walk[k]), batch[k], "step " + std::to_string(k));
+}
