@@ -373,7 +373,7 @@ void runBench(const BenchOptions& bench) {
                   << ": mean error " << std::setprecision(3) << 100.0 * row.mean << "% (" << row.samples
                   << " frames)\n";
     }
-    for (const std::string& warning : warnings) std::cout << "  note: the profile " << warning << "\n";
+    for (const std::string& warning : warnings) std::cout << "  note: " << warning << "\n";
     std::cout << "wrote " << (dir / kBenchJson).string() << ", " << kBenchAlgorithmsCsv << ", " << kBenchRunsCsv << ", "
               << kBenchEvalPathsCsv << ", " << kBenchMetricsCsv << ", " << kBenchTimeModelCsv
               << (pareto.made ? ", bench_pareto.png" : "") << "\n";

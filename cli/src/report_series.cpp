@@ -76,6 +76,12 @@ void addCompareCurves(ReportContext& context, const fs::path& curvesPath) {
     // A little room above 1.0 so curves that reach the best known stay visible under the border.
     script << "set xlabel 'evaluations (renders)'\nset ylabel 'best fitness so far'\nset key bottom right\n"
            << "set offsets 0, 0, graph 0.04, graph 0.02\n";
+    // Runs that end early (one-shot heuristics, converged searches) keep their best fitness to
+    // the right edge, so a 1-evaluation answer shows as a level line, not a dot at x = 1.
+    double lastEvaluation = 0.0;
+    for (const auto& [algorithm, seeds] : runs) {
+        for (const auto& [seed, curve] : seeds) lastEvaluation = std::max(lastEvaluation, curve.back().first);
+    }
     std::ostringstream plots;
     int block = 0;
     for (std::size_t a = 0; a < order.size(); ++a) {
@@ -101,7 +107,11 @@ void addCompareCurves(ReportContext& context, const fs::path& curvesPath) {
             data << grid[g] << line.str();
             previous = line.str();
         }
-        if (grid.size() == 1) data << grid[0] + 0.5 << previous;  // a one-point run still shows
+        if (grid.back() < lastEvaluation) {
+            data << lastEvaluation << previous;
+        } else if (grid.size() == 1) {
+            data << grid[0] + 0.5 << previous;  // a one-point run still shows
+        }
         data << "\n\n";
         const std::string color = seriesColor(int(a));
         plots << (a ? ", " : "") << "'" << context.prefix << "compare_curves.dat' index " << block
@@ -120,7 +130,8 @@ void addCompareCurves(ReportContext& context, const fs::path& curvesPath) {
     spec.height = 480;
     context.plot(spec,
                  "Each line is the median over seeds of the best fitness found after that many evaluations; "
-                 "the shaded band spans the worst and the best seed (the published GA-PSO vs PSO vs GA figure).");
+                 "the shaded band spans the worst and the best seed (the published GA-PSO vs PSO vs GA figure). "
+                 "A run that stops early keeps its best fitness to the right edge.");
 }
 
 void addCompareFinal(ReportContext& context, const nlohmann::json& document) {
