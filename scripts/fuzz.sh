@@ -7,7 +7,8 @@
 # plus what earlier runs found (<build>/fuzz/<target>/corpus, never the source tree), and stops at
 # the first crash, leak, timeout or out-of-memory. A finding is left in <build>/fuzz/<target>/;
 # add it to tests/fuzz/regressions/<target>/ and fix the cause: the GoogleTest suites replay it.
-# Environment: LODOPT_FUZZ_BUILD_DIR (default build-fuzz), LODOPT_JOBS (default: all cores).
+# Environment: LODOPT_FUZZ_BUILD_DIR (default build-fuzz), LODOPT_JOBS (default: all cores),
+# LODOPT_FUZZ_SEED (default 1; 0 = random).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -41,7 +42,9 @@ for entry in "${targets[@]}"; do
   read -r target maxlen dict <<<"$entry"
   work="$build/fuzz/$target"
   mkdir -p "$work/corpus"
-  args=(-max_total_time="$seconds" -max_len="$maxlen" -timeout=10 -rss_limit_mb=2048
+  # A fixed seed by default, so that CI explores the same inputs first on every run (a finding
+  # reproduces); LODOPT_FUZZ_SEED=0 lets libFuzzer pick one.
+  args=(-seed="${LODOPT_FUZZ_SEED:-1}" -max_total_time="$seconds" -max_len="$maxlen" -timeout=10 -rss_limit_mb=2048
         -print_final_stats=1 -artifact_prefix="$work/")
   [ "$dict" != - ] && args+=(-dict="$dict")
   echo "fuzz: $target for ${seconds} s"

@@ -168,7 +168,8 @@ TEST_F(InterruptResume, TuneStopsAfterAViewAndResumesToTheSameCoefficients) {
     // --resume, starts over instead of refusing, and gives the same coefficients.
     const Exit again = runLodopt(kTune + out.string() + mProfile + " --threads 2", mDir);
     ASSERT_EQ(again.code, 0) << again.err;
-    for (const nlohmann::json& view : readJson(out)["tuning"]["per_view"]) EXPECT_FALSE(view["resumed"].get<bool>());
+    const nlohmann::json rerun = readJson(out);
+    for (const nlohmann::json& view : rerun["tuning"]["per_view"]) EXPECT_FALSE(view["resumed"].get<bool>());
     EXPECT_EQ(tuneResult(out), expected);
     EXPECT_EQ(viewFiles(views), 4u);
 
