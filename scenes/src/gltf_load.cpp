@@ -27,11 +27,30 @@ namespace {
 // decoded, after validation (normal and occlusion maps never are).
 struct DeferredImages {
     std::vector<std::vector<unsigned char>> encoded;
+    const tinygltf::Model* model = nullptr;  // the model being parsed: its buffers are loaded
 };
 
-bool keepEncodedImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+// tinygltf 2.7 hands an image's bufferView to the loader without checking that the view lies
+// inside its buffer (a 728-byte view of a 188-byte buffer was read past the end: fuzzing,
+// tests/fuzz/regressions/gltf/), so the range is checked here before any byte is read.
+bool imageViewInsideBuffer(const tinygltf::Image& image, const tinygltf::Model& model, std::string* error) {
+    if (image.bufferView < 0) return true;  // from a uri: tinygltf read exactly that file
+    const auto& view = model.bufferViews.at(static_cast<std::size_t>(image.bufferView));
+    const auto& buffer = model.buffers.at(static_cast<std::size_t>(view.buffer));
+    const std::uint64_t end = std::uint64_t(view.byteOffset) + std::uint64_t(view.byteLength);
+    if (end <= buffer.data.size()) return true;
+    if (error) {
+        *error += "bufferViews[" + std::to_string(image.bufferView) + "] (an image) runs past the end of buffers[" +
+                  std::to_string(view.buffer) + "]: bytes " + std::to_string(view.byteOffset) + ".." +
+                  std::to_string(end) + " of " + std::to_string(buffer.data.size()) + "\n";
+    }
+    return false;
+}
+
+bool keepEncodedImage(tinygltf::Image* image, const int index, std::string* error, std::string*, int, int,
                       const unsigned char* bytes, int size, void* user) {
     auto* deferred = static_cast<DeferredImages*>(user);
+    if (deferred->model && !imageViewInsideBuffer(*image, *deferred->model, error)) return false;
     if (index < 0 || size <= 0) return true;
     if (deferred->encoded.size() <= static_cast<std::size_t>(index)) deferred->encoded.resize(index + 1);
     deferred->encoded[index].assign(bytes, bytes + size);
@@ -204,6 +223,7 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
     parser.SetFsCallbacks({&regularFileExists, &tinygltf::ExpandFilePath, &readCappedFile, &tinygltf::WriteWholeFile,
                            &limit});
     tinygltf::Model model;
+    deferred.model = &model;
     std::string error, warning;
     const std::string baseDir = fs::path(path).parent_path().string();
     bool parsed = false;

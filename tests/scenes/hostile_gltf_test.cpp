@@ -462,5 +462,22 @@ TEST(HostileGltf, FuzzCorpusAndRegressionsLoadOrFailCleanly) {
     EXPECT_GE(inputs, 10) << "the seed corpus is checked in under tests/fuzz/corpus/gltf";
 }
 
+// Found by fuzzing in CI (2026-12-01): an image's bufferView of 728 bytes inside a 188-byte
+// GLB buffer. tinygltf passes it to the image loader unchecked, which read past the buffer.
+TEST(HostileGltf, ImageBufferViewPastItsBufferIsRefusedBeforeAnyRead) {
+    const std::filesystem::path file =
+        std::filesystem::path(LODOPT_SOURCE_DIR) / "tests" / "fuzz" / "regressions" / "gltf" / "image-view-past-buffer.glb";
+    ASSERT_TRUE(std::filesystem::exists(file)) << file;
+    try {
+        loadGltf(file.string());
+        ADD_FAILURE() << "loaded";
+    } catch (const SceneError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("bufferViews[0] (an image) runs past the end of buffers[0]"), std::string::npos)
+            << message;
+        EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    }
+}
+
 }  // namespace
 }  // namespace lodopt::scenes
