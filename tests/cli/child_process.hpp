@@ -93,4 +93,26 @@ inline void signalWhen(pid_t pid, const std::function<bool()>& finished, int sig
     kill(pid, signal);
 }
 
+// A device profile with fixed coefficients (harbor, linear model): predictions, and so the
+// searches, do not depend on this machine's speed. Harbor's overview then predicts 1.14 ms
+// (coarsest) to 3.94 ms (finest) at 128x128 and 0.89 to 2.94 ms at 64x64.
+inline constexpr const char* kFixedProfile =
+    R"json({"format":"lodopt-device-profile","version":1,"created":"2025-01-01T00:00:00Z",)json"
+    R"json("machine":{"cpu_model":"test","cores":2},)json"
+    R"json("renderer":{"gl_renderer":"Mesa/X.org / llvmpipe (LLVM 15.0.6, 256 bits)",)json"
+    R"json("gl_version":"4.5 (Core Profile) Mesa 22.3.6"},"render_size":{"width":128,"height":128},)json"
+    R"json("scene":{"name":"harbor","seed":1},"calibration":{"seed":3,"viewpoints":8,)json"
+    R"json("held_out_viewpoints":4,"fit_samples":12,"held_out_samples":12,"timing":{"clock":"wall-min",)json"
+    R"json("rounds":1,"repeats_per_round":1,"warmup":1,"median_spread":0.0,"p90_spread":0.0,)json"
+    R"json("seconds":0.0}},"default_model":"linear","models":[{"name":"linear","fitted":true,)json"
+    R"json("coefficients":{"intercept_ms":0.5,"vertices":0.0,"triangles":2e-05,"texture_bytes":0.0,)json"
+    R"json("draw_calls":0.01,"pixels":1e-05,"drawn_objects":0.0,"matrices":0.0,"bounding_boxes":0.0,)json"
+    R"json("visible_triangles":4e-05,"raster_pixels":0.0,"edge_pixels":2e-05,"shaded_pixels":0.0},)json"
+    R"json("fit":{"samples":0,"rms_residual_ms":0.0,"condition_number":0.0,"pairs":0,"skipped_pairs":0,)json"
+    R"json("iterations":0,"notes":[],"errors":{"count":0,"mean":0.0,"median":0.0,"p90":0.0,"max":0.0}},)json"
+    R"json("held_out_errors":{"count":0,"mean":0.0,"median":0.0,"p90":0.0,"max":0.0}}],)json"
+    R"json("feature_names":["vertices","triangles","texture_bytes","draw_calls","pixels","drawn_objects",)json"
+    R"json("matrices","bounding_boxes","visible_triangles","raster_pixels","edge_pixels","shaded_pixels"],)json"
+    R"json("samples":[]})json";
+
 }  // namespace lodopt::cli_test
