@@ -3,6 +3,7 @@
 #pragma once
 
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -114,5 +115,25 @@ inline constexpr const char* kFixedProfile =
     R"json("feature_names":["vertices","triangles","texture_bytes","draw_calls","pixels","drawn_objects",)json"
     R"json("matrices","bounding_boxes","visible_triangles","raster_pixels","edge_pixels","shaded_pixels"],)json"
     R"json("samples":[]})json";
+
+
+// A fresh folder per test (`<tmp>/<prefix><pid>-<test name>`) holding kFixedProfile, removed
+// afterwards; mProfile is the " --profile <file> " to append to a command line.
+class FolderWithFixedProfile : public testing::Test {
+protected:
+    explicit FolderWithFixedProfile(std::string prefix) : mPrefix(std::move(prefix)) {}
+    void SetUp() override {
+        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+        mDir = std::filesystem::temp_directory_path() / (mPrefix + std::to_string(::getpid()) + "-" + info->name());
+        std::filesystem::remove_all(mDir);
+        std::filesystem::create_directories(mDir);
+        std::ofstream(mDir / "profile.json") << kFixedProfile;
+        mProfile = " --profile " + (mDir / "profile.json").string() + " ";
+    }
+    void TearDown() override { std::filesystem::remove_all(mDir); }
+    std::string mPrefix;
+    std::filesystem::path mDir;
+    std::string mProfile;
+};
 
 }  // namespace lodopt::cli_test

@@ -58,21 +58,10 @@ void expectInterruptMessage(const Exit& cut, int signal, const std::string& what
     EXPECT_NE(cut.err.find(" --resume"), std::string::npos) << cut.err;
 }
 
-using lodopt::cli_test::kFixedProfile;
 
-class InterruptResume : public testing::Test {
+class InterruptResume : public lodopt::cli_test::FolderWithFixedProfile {
 protected:
-    void SetUp() override {
-        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-        mDir = fs::temp_directory_path() / ("lodopt-resume-" + std::to_string(::getpid()) + "-" + info->name());
-        fs::remove_all(mDir);
-        fs::create_directories(mDir);
-        std::ofstream(mDir / "profile.json") << kFixedProfile;
-        mProfile = " --profile " + (mDir / "profile.json").string() + " ";
-    }
-    void TearDown() override { fs::remove_all(mDir); }
-    fs::path mDir;
-    std::string mProfile;  // " --profile <fixed profile> "
+    InterruptResume() : FolderWithFixedProfile("lodopt-resume-") {}
 };
 
 // ---- tune: one unit per view ---------------------------------------------------------------

@@ -66,21 +66,10 @@ std::string withoutColumns(const std::string& csv, const std::vector<std::string
     return result;
 }
 
-using lodopt::cli_test::kFixedProfile;
 
-class Robustness : public testing::Test {
+class Robustness : public lodopt::cli_test::FolderWithFixedProfile {
 protected:
-    void SetUp() override {
-        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-        mDir = fs::temp_directory_path() / ("lodopt-robust-" + std::to_string(::getpid()) + "-" + info->name());
-        fs::remove_all(mDir);
-        fs::create_directories(mDir);
-        std::ofstream(mDir / "profile.json") << kFixedProfile;
-        mProfile = " --profile " + (mDir / "profile.json").string() + " ";
-    }
-    void TearDown() override { fs::remove_all(mDir); }
-    fs::path mDir;
-    std::string mProfile;  // " --profile <fixed profile> "
+    Robustness() : FolderWithFixedProfile("lodopt-robust-") {}
 };
 
 // ---- Determinism ------------------------------------------------------------------------
