@@ -11,11 +11,7 @@ namespace {
 
 constexpr const char* kFormat = "lodopt-bench-checkpoint/1";
 
-// JSON writes NaN (and infinities, which no field holds) as null.
-double numberOf(const nlohmann::json& value) {
-    return value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>();
-}
-
+// JSON writes NaN (and infinities, which no field holds) as null: numberOrNaN reads it back.
 nlohmann::json toJson(const AlgorithmRun& run) {
     return {{"algorithm", run.algorithm},
             {"evaluation_budget", run.evaluationBudget},
@@ -31,9 +27,9 @@ AlgorithmRun runFromJson(const nlohmann::json& saved) {
     run.algorithm = saved.at("algorithm").get<std::string>();
     run.evaluationBudget = saved.at("evaluation_budget").get<std::int64_t>();
     run.seed = saved.at("seed").get<std::uint64_t>();
-    run.wallSeconds = numberOf(saved.at("wall_seconds"));
-    run.fitness = numberOf(saved.at("fitness"));
-    run.predictedMs = numberOf(saved.at("predicted_ms"));
+    run.wallSeconds = numberOrNaN(saved.at("wall_seconds"));
+    run.fitness = numberOrNaN(saved.at("fitness"));
+    run.predictedMs = numberOrNaN(saved.at("predicted_ms"));
     run.evaluations = saved.at("evaluations").get<std::int64_t>();
     return run;
 }
@@ -48,11 +44,11 @@ nlohmann::json toJson(const BestKnown& best) {
 
 BestKnown bestFromJson(const nlohmann::json& saved) {
     BestKnown best;
-    best.fitness = numberOf(saved.at("fitness"));
+    best.fitness = numberOrNaN(saved.at("fitness"));
     best.source = saved.at("source").get<std::string>();
-    best.combinations = numberOf(saved.at("combinations"));
+    best.combinations = numberOrNaN(saved.at("combinations"));
     best.evaluations = saved.at("evaluations").get<std::int64_t>();
-    best.seconds = numberOf(saved.at("seconds"));
+    best.seconds = numberOrNaN(saved.at("seconds"));
     return best;
 }
 
@@ -75,10 +71,10 @@ EvalPathRow pathFromJson(const nlohmann::json& saved) {
     row.mode = saved.at("mode").get<std::string>();
     row.threads = saved.at("threads").get<int>();
     row.candidates = saved.at("candidates").get<int>();
-    row.seconds = numberOf(saved.at("seconds"));
-    row.evaluationsPerSecond = numberOf(saved.at("evaluations_per_second"));
-    row.meanAbsFitnessDiff = numberOf(saved.at("mean_abs_fitness_diff"));
-    row.maxAbsFitnessDiff = numberOf(saved.at("max_abs_fitness_diff"));
+    row.seconds = numberOrNaN(saved.at("seconds"));
+    row.evaluationsPerSecond = numberOrNaN(saved.at("evaluations_per_second"));
+    row.meanAbsFitnessDiff = numberOrNaN(saved.at("mean_abs_fitness_diff"));
+    row.maxAbsFitnessDiff = numberOrNaN(saved.at("max_abs_fitness_diff"));
     return row;
 }
 
@@ -99,10 +95,10 @@ MetricsRow metricsFromJson(const nlohmann::json& saved) {
     row.width = saved.at("width").get<int>();
     row.height = saved.at("height").get<int>();
     row.calls = saved.at("calls").get<std::int64_t>();
-    row.microsecondsPerCall = numberOf(saved.at("microseconds_per_call"));
+    row.microsecondsPerCall = numberOrNaN(saved.at("microseconds_per_call"));
     row.reference = saved.at("reference").get<std::string>();
-    row.referenceMicrosecondsPerCall = numberOf(saved.at("reference_microseconds_per_call"));
-    row.absDeviation = numberOf(saved.at("abs_deviation"));
+    row.referenceMicrosecondsPerCall = numberOrNaN(saved.at("reference_microseconds_per_call"));
+    row.absDeviation = numberOrNaN(saved.at("abs_deviation"));
     return row;
 }
 
@@ -116,10 +112,10 @@ TimeModelRow timeModelFromJson(const nlohmann::json& saved) {
     row.model = saved.at("model").get<std::string>();
     row.source = saved.at("source").get<std::string>();
     row.samples = saved.at("samples").get<std::size_t>();
-    row.mean = numberOf(saved.at("mean"));
-    row.median = numberOf(saved.at("median"));
-    row.p90 = numberOf(saved.at("p90"));
-    row.max = numberOf(saved.at("max"));
+    row.mean = numberOrNaN(saved.at("mean"));
+    row.median = numberOrNaN(saved.at("median"));
+    row.p90 = numberOrNaN(saved.at("p90"));
+    row.max = numberOrNaN(saved.at("max"));
     return row;
 }
 

@@ -1,6 +1,7 @@
 #include "cli_common.hpp"
 
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "scenes/atomic_file.hpp"
@@ -48,6 +49,10 @@ void parseSize(const std::string& text, int& width, int& height) {
     }
     width = w;
     height = h;
+}
+
+double numberOrNaN(const nlohmann::json& value) {
+    return value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>();
 }
 
 void checkIdentity(const std::string& path, const nlohmann::json& was, const nlohmann::json& identity) {

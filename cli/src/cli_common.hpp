@@ -31,6 +31,9 @@ void printJson(const nlohmann::json& document);
 // Writes `document` atomically to `path`.
 void writeJsonFile(const std::string& path, const nlohmann::json& document);
 
+// A number saved in a checkpoint; null (how nlohmann-json writes NaN) reads back as NaN.
+double numberOrNaN(const nlohmann::json& value);
+
 // For --resume: throws UsageError naming the first option of `identity` (the options that
 // change a long command's results) that the checkpoint at `path` saved (`was`) with another
 // value or not at all.

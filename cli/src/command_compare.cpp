@@ -48,10 +48,6 @@ std::int64_t evaluationsToReach(const optimizer::Result& result, double target) 
 }
 
 // The checkpoint stores doubles through JSON, which writes NaN as null.
-double numberOf(const nlohmann::json& value) {
-    return value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>();
-}
-
 nlohmann::json runToJson(const RunRecord& run) {
     const optimizer::Result& result = run.result;
     nlohmann::json log = nlohmann::json::array();
@@ -78,16 +74,16 @@ RunRecord runFromJson(const nlohmann::json& saved) {
     RunRecord run;
     run.algorithm = saved.at("algorithm").get<std::string>();
     run.seed = saved.at("seed").get<std::uint64_t>();
-    run.wallSeconds = numberOf(saved.at("wall_seconds"));
+    run.wallSeconds = numberOrNaN(saved.at("wall_seconds"));
     optimizer::Result& result = run.result;
     result.algorithm = run.algorithm;
     result.best = saved.at("best").get<optimizer::Combination>();
-    result.bestScore.fitness = numberOf(saved.at("fitness"));
+    result.bestScore.fitness = numberOrNaN(saved.at("fitness"));
     const nlohmann::json& components = saved.at("components");
     if (components.size() > optimizer::Score::kMaxComponents) throw std::out_of_range("too many components");
-    for (std::size_t c = 0; c < components.size(); ++c) result.bestScore.components[c] = numberOf(components[c]);
+    for (std::size_t c = 0; c < components.size(); ++c) result.bestScore.components[c] = numberOrNaN(components[c]);
     result.bestScore.componentCount = int(components.size());
-    result.predictedMs = numberOf(saved.at("predicted_ms"));
+    result.predictedMs = numberOrNaN(saved.at("predicted_ms"));
     result.evaluations = saved.at("evaluations").get<std::int64_t>();
     result.cacheHits = saved.at("cache_hits").get<std::int64_t>();
     result.iterations = saved.at("iterations").get<int>();
@@ -98,8 +94,8 @@ RunRecord runFromJson(const nlohmann::json& saved) {
         if (optimizer::toString(reason) == stop) result.stopReason = reason;
     }
     for (const nlohmann::json& row : saved.at("log")) {
-        result.log.push_back({row.at(0).get<int>(), numberOf(row.at(1)), numberOf(row.at(2)), numberOf(row.at(3)),
-                              row.at(4).get<std::int64_t>(), row.at(5).get<std::int64_t>(), numberOf(row.at(6))});
+        result.log.push_back({row.at(0).get<int>(), numberOrNaN(row.at(1)), numberOrNaN(row.at(2)), numberOrNaN(row.at(3)),
+                              row.at(4).get<std::int64_t>(), row.at(5).get<std::int64_t>(), numberOrNaN(row.at(6))});
     }
     return run;
 }

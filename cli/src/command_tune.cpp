@@ -64,15 +64,16 @@ struct TuneView {
     std::map<optimizer::Combination, double> cache;  // fitness of combinations already scored
 };
 
+// The options that change a view's optimizer answer, keyed by option name (checkIdentity).
 nlohmann::json settingsSignature(const TuneOptions& o) {
     const OptimizeOptions& p = o.optimize;
     return {{"scene", p.scene},
             {"seed", p.seed},
             {"size", p.size},
-            {"budget_ms", p.budgetMs},
-            {"algorithm", p.algorithm},
+            {"budget-ms", p.budgetMs},
+            {"algo", p.algorithm},
             {"evals", p.maxEvaluations},
-            {"max_iterations", p.maxIterations},
+            {"max-iterations", p.maxIterations},
             {"weights", p.weights},
             {"profile", p.profile},
             {"model", p.model},
@@ -85,28 +86,6 @@ std::filesystem::path checkpointDir(const std::string& out) {
     return file.parent_path() / (file.stem().string() + "_views");
 }
 
-// The option behind a key of settingsSignature(), for messages.
-std::string optionOfSetting(const std::string& key) {
-    if (key == "algorithm") return "--algo";
-    std::string option = "--" + key;
-    std::replace(option.begin(), option.end(), '_', '-');
-    return option;
-}
-
-// Names the first setting that differs between a checkpoint's and this run's, "" when none does.
-std::string differingSetting(const nlohmann::json& saved, const nlohmann::json& signature) {
-    for (auto it = signature.begin(); it != signature.end(); ++it) {
-        if (!saved.is_object() || !saved.contains(it.key()) || saved[it.key()] != it.value()) {
-            return optionOfSetting(it.key()) + " " +
-                   (saved.is_object() && saved.contains(it.key()) ? saved[it.key()].dump() : std::string("(unset)")) +
-                   ", this run has " + it.value().dump();
-        }
-    }
-    return "";
-}
-
-// Without --resume, view checkpoints left by an earlier tune are refused rather than silently
-// overwritten: they hold its optimizer runs, the expensive part.
 // Without --resume, view files of an interrupted tune are refused (they would be lost); those
 // of a finished one (the coefficients file is at least as new as every view file) are cleared,
 // so that running the same tune again just works.
@@ -211,11 +190,7 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
                 !saved.contains("combination")) {
                 throw UsageError(checkpoint.string() + ": not a tune checkpoint (delete it or drop --resume)");
             }
-            const std::string differing = differingSetting(saved["settings"], signature);
-            if (!differing.empty()) {
-                throw UsageError(checkpoint.string() + ": was written with " + differing +
-                                 "; resume with the same options, or delete the folder to start over");
-            }
+            checkIdentity(checkpoint.string(), saved["settings"], signature);
             if (saved["camera"] != cameraToJson(view.camera)) {
                 throw UsageError(checkpoint.string() +
                                  ": made from another viewpoint; delete the folder or drop --resume");
@@ -237,7 +212,7 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
             view.setup = std::move(context.setup);
             view.evaluator = std::move(context.evaluator);
             nlohmann::json saved = {{"format", "lodopt-tune-view"},
-                                    {"version", 1},
+                                    {"version", 2},
                                     {"settings", signature},
                                     {"index", k},
                                     {"held_out", view.heldOut},

@@ -10,11 +10,6 @@ namespace {
 
 constexpr const char* kFormat = "lodopt-schedule-checkpoint/1";
 
-// JSON writes NaN as null.
-double numberOf(const nlohmann::json& value) {
-    return value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>();
-}
-
 }  // namespace
 
 std::uint64_t levelsHash(const scenes::Combination& levels) {
@@ -36,14 +31,14 @@ std::vector<SavedFrame> loadScheduleCheckpoint(const std::string& path, const nl
         for (const nlohmann::json& item : saved.at("frames")) {
             SavedFrame f;
             f.frame = item.at("frame").get<int>();
-            f.decisionMicroseconds = numberOf(item.at("decision_us"));
-            f.measuredMs = numberOf(item.at("measured_ms"));
-            f.baselineMeasuredMs = numberOf(item.at("baseline_measured_ms"));
-            f.fitness = numberOf(item.at("fitness"));
-            f.baselineFitness = numberOf(item.at("baseline_fitness"));
-            f.exactPredictedMs = numberOf(item.at("exact_predicted_ms"));
-            f.predictedMs = numberOf(item.at("predicted_ms"));
-            f.feedbackScale = numberOf(item.at("feedback_scale"));
+            f.decisionMicroseconds = numberOrNaN(item.at("decision_us"));
+            f.measuredMs = numberOrNaN(item.at("measured_ms"));
+            f.baselineMeasuredMs = numberOrNaN(item.at("baseline_measured_ms"));
+            f.fitness = numberOrNaN(item.at("fitness"));
+            f.baselineFitness = numberOrNaN(item.at("baseline_fitness"));
+            f.exactPredictedMs = numberOrNaN(item.at("exact_predicted_ms"));
+            f.predictedMs = numberOrNaN(item.at("predicted_ms"));
+            f.feedbackScale = numberOrNaN(item.at("feedback_scale"));
             f.levelsHash = item.at("levels_hash").get<std::uint64_t>();
             frames.push_back(f);
         }

@@ -5,7 +5,6 @@
 
 #include "evaluation/evaluation.hpp"
 #include "dirty_regions.hpp"
-#include "dirty_regions.hpp"
 #include "metrics/incremental_evaluator.hpp"
 
 namespace lodopt::evaluation {
@@ -61,6 +60,7 @@ struct LayerEvaluator::State {
     std::vector<renderer::RowSpan> dirtyRows;
     int dirtyTop = 0, dirtyBottom = 0;
     std::vector<renderer::PixelRect> changed;  // tight rectangles of the changed pixels
+    renderer::CompositeScratch compositeScratch;
 
     State(const ViewSetup& setup, const metrics::MetricParameters& parameters, DirtyRegions regions)
         : regions(regions), metrics(viewOf(setup.reference()), parameters) {
@@ -70,9 +70,11 @@ struct LayerEvaluator::State {
         renderer::composite(layers, setup.width(), setup.height(), setup.clearColor(), frame);
         metrics.setCandidate(viewOf(frame));
         // ObjectBounds keeps the earlier threshold too: plain area, no window or call cost.
-        costModel = regions == DirtyRegions::ObjectBounds
-                        ? detail::UpdateCostModel{0, 0}
-                        : detail::UpdateCostModel{metrics.ssimMapSize().window - 1, costModel.callOverhead};
+        if (regions == DirtyRegions::ObjectBounds) {
+            costModel = {0, 0};
+        } else {
+            costModel.ssimReach = metrics.ssimMapSize().window - 1;
+        }
         dirty.reserve(current.size());
         dirtyRows.resize(std::size_t(setup.height()));
     }
@@ -97,7 +99,8 @@ struct LayerEvaluator::State {
         if (dirtyTop >= dirtyBottom) return;
         changed.clear();
         const std::span<renderer::RowSpan> rows(dirtyRows.data() + dirtyTop, std::size_t(dirtyBottom - dirtyTop));
-        renderer::compositeSpansChanges(layers, dirtyTop, rows, setup.clearColor(), kChangeGrid, frame, changed);
+        renderer::compositeSpansChanges(layers, dirtyTop, rows, setup.clearColor(), kChangeGrid, frame, changed,
+                                        compositeScratch);
         std::fill(rows.begin(), rows.end(), renderer::RowSpan{});
         if (changed.empty()) return;  // the composite is pixel-identical: the scores stand
         detail::mergeCheaper(changed, costModel);

@@ -68,15 +68,15 @@ PixelRect clippedToFrame(PixelRect rect, const Frame& out) {
 // Pixels per row chunk: scratch rows live on the stack.
 constexpr int kChunk = 512;
 
-// The layers that reach `rect`, still in object order (the order the depth test needs).
-std::vector<const Layer*> layersReaching(const std::vector<const Layer*>& layers, PixelRect rect) {
-    std::vector<const Layer*> reaching;
+// The layers that reach `rect` into `reaching`, still in object order (the order the depth
+// test needs).
+void layersReaching(const std::vector<const Layer*>& layers, PixelRect rect, std::vector<const Layer*>& reaching) {
+    reaching.clear();
     for (const Layer* layer : layers) {
         if (!layer || layer->rect.empty()) continue;
         const PixelRect& r = layer->rect;
         if (r.x0 < rect.x1 && rect.x0 < r.x1 && r.y0 < rect.y1 && rect.y0 < r.y1) reaching.push_back(layer);
     }
-    return reaching;
 }
 
 // Composites row y, columns [x0, x0 + n) with n <= kChunk, into `color` and `depth` with the
@@ -177,6 +177,13 @@ std::vector<RowSpan> coveredRowSpans(const Layer& layer) {
 
 void compositeSpansChanges(const std::vector<const Layer*>& layers, int top, std::span<const RowSpan> spans,
                            glm::vec4 clearColor, ChangeGrid grid, Frame& out, std::vector<PixelRect>& changed) {
+    CompositeScratch scratch;
+    compositeSpansChanges(layers, top, spans, clearColor, grid, out, changed, scratch);
+}
+
+void compositeSpansChanges(const std::vector<const Layer*>& layers, int top, std::span<const RowSpan> spans,
+                           glm::vec4 clearColor, ChangeGrid grid, Frame& out, std::vector<PixelRect>& changed,
+                           CompositeScratch& scratch) {
     const int rowBegin = std::max(top, 0);
     const int rowEnd = std::min(top + int(spans.size()), out.height);
     if (rowBegin >= rowEnd) return;
@@ -188,14 +195,17 @@ void compositeSpansChanges(const std::vector<const Layer*>& layers, int top, std
     }
     hull = clippedToFrame(hull, out);
     if (hull.empty()) return;
-    const std::vector<const Layer*> reaching = layersReaching(layers, hull);
+    layersReaching(layers, hull, scratch.reaching);
+    const std::vector<const Layer*>& reaching = scratch.reaching;
     std::uint8_t clearBytes[4];
     clearColorBytes(clearColor, clearBytes);
     std::uint32_t clear;
     std::memcpy(&clear, clearBytes, 4);
     std::uint32_t color[kChunk];
     float depth[kChunk];
-    std::vector<std::uint32_t> columns(std::size_t(out.width), 0);  // per column, the band's changed rows
+    // appendColumnRuns clears every mark it reads, so the buffer is all zero between calls.
+    std::vector<std::uint32_t>& columns = scratch.columns;
+    if (columns.size() != std::size_t(out.width)) columns.assign(std::size_t(out.width), 0);
     // Bands counted from `top`, so that the caller's band grid does not depend on clipping.
     for (int bandTop = top + (rowBegin - top) / bandRows * bandRows; bandTop < rowEnd; bandTop += bandRows) {
         const int bandBottom = std::min(rowEnd, bandTop + bandRows);

@@ -249,15 +249,19 @@ void FrameScheduler::decideFlat() {
     // the last, often large, step down left over: the objects just lowered do not fit a step
     // back, more important ones may.
     sortByImportance(false);
-    for (int o : w.order) {
-        while (d.levels[o] > 0) {
-            const int level = d.levels[o];
-            w.trial = d.features;
-            w.trial += contribution(o, level - 1);
-            w.trial -= contribution(o, level);
-            if (estimate(w.trial) > budget) break;
-            setLevel(o, level - 1);
-        }
+    for (int o : w.order) raiseWhileFits(o, 0);
+}
+
+void FrameScheduler::raiseWhileFits(int object, int finest) {
+    Work& w = *mWork;
+    FrameDecision& d = mDecision;
+    while (d.levels[object] > finest) {
+        const int level = d.levels[object];
+        w.trial = d.features;
+        w.trial += contribution(object, level - 1);
+        w.trial -= contribution(object, level);
+        if (estimate(w.trial) > mParameters.budgetMs) break;
+        setLevel(object, level - 1);
     }
 }
 
@@ -282,18 +286,8 @@ void FrameScheduler::applySwitchControl() {
         // importance. A change avoided is a switch saved.
         sortByImportance(false);
         for (int o : w.order) {
-            const int previous = mPrevious[o];
-            if (previous == scenes::kNotDrawn || d.levels[o] == scenes::kNotDrawn) continue;
-            while (d.levels[o] > previous) {
-                const int level = d.levels[o];
-                w.trial = d.features;
-                w.trial += contribution(o, level - 1);
-                w.trial -= contribution(o, level);
-                const double kept = estimate(w.trial);
-                if (kept > mParameters.budgetMs) break;
-                setLevel(o, level - 1);
-                ms = kept;
-            }
+            if (mPrevious[o] == scenes::kNotDrawn || d.levels[o] == scenes::kNotDrawn) continue;
+            raiseWhileFits(o, mPrevious[o]);
         }
         raiseWithinRange();
         return;
@@ -317,15 +311,7 @@ void FrameScheduler::raiseWithinRange() {
     FrameDecision& d = mDecision;
     // w.order is in decreasing importance (applySwitchControl sorted it).
     for (int o : w.order) {
-        if (d.levels[o] == scenes::kNotDrawn) continue;
-        while (d.levels[o] > mRange[o].finest) {
-            const int level = d.levels[o];
-            w.trial = d.features;
-            w.trial += contribution(o, level - 1);
-            w.trial -= contribution(o, level);
-            if (estimate(w.trial) > mParameters.budgetMs) break;
-            setLevel(o, level - 1);
-        }
+        if (d.levels[o] != scenes::kNotDrawn) raiseWhileFits(o, mRange[o].finest);
     }
 }
 

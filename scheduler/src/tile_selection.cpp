@@ -40,7 +40,6 @@ void FrameScheduler::decideTiles() {
     }
 
     // Algorithm 1: add objects at their coarsest allowed level while the budget lasts.
-    double ms = estimate(d.features);
     int drawn = 0;
     for (int o : w.order) {
         const int level = mIndex.levelCount(o) - 1;
@@ -49,7 +48,6 @@ void FrameScheduler::decideTiles() {
         const double added = estimate(w.trial);
         if (added > budget) break;
         setLevel(o, level);
-        ms = added;
         ++drawn;
     }
 
@@ -72,7 +70,6 @@ void FrameScheduler::decideTiles() {
             double raised = estimate(w.trial);
             if (raised <= budget) {
                 setLevel(o, level - 1);
-                ms = raised;
                 continue;
             }
             const double stayLoss = pixels * (rates[level] - rates[level - 1]);
@@ -89,14 +86,12 @@ void FrameScheduler::decideTiles() {
             for (int j = k; j < end; ++j) setLevel(w.order[j], scenes::kNotDrawn);
             end = k;
             setLevel(o, level - 1);
-            ms = estimate(d.features);
         }
         // Counted only when the budget held it there: an object whose distance level is its
         // coarsest sits there by choice, and counting it would end the raising after the first
         // far tiles, with most of the budget unused.
         if (d.levels[o] == mIndex.levelCount(o) - 1 && target < d.levels[o]) ++atCoarsest;
     }
-    (void)ms;
 }
 
 }  // namespace lodopt::scheduler

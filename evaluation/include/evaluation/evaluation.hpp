@@ -16,8 +16,9 @@
 // where an object whose level changed since the state's previous candidate covers pixels (per
 // row, its old and new layers' covered columns), and the metrics are updated incrementally only
 // around the pixels whose color actually changed (tight rectangles per band of rows, merged
-// where one update is cheaper). Per-thread states make batches parallel; because the incremental metrics equal a from-scratch computation to the bit, the
-// scores do not depend on the order or the thread count.
+// where one update is cheaper). Per-thread states make batches parallel; because the
+// incremental metrics equal a from-scratch computation to the bit, the scores do not depend on
+// the order or the thread count.
 // Full path (FullRenderEvaluator, `--eval full`): render the whole combination with OpenGL
 // and compute the metrics from scratch; serial (one GL context).
 #pragma once

@@ -134,6 +134,16 @@ struct ChangeGrid {
 // rectangle of each cluster of changed columns (see ChangeGrid) is appended to `changed`, bands
 // top to bottom, clusters left to right. Together they cover every pixel whose color changed.
 // Depth is written as compositeRect writes it, but a depth-only change is not reported.
+// Reusable buffers of compositeSpansChanges, so that a caller in a loop (the fast evaluation
+// path, once per candidate) allocates nothing after the first call.
+struct CompositeScratch {
+    std::vector<const Layer*> reaching;  // the layers that reach the recomposited rows
+    std::vector<std::uint32_t> columns;  // per frame column, the current band's changed rows
+};
+void compositeSpansChanges(const std::vector<const Layer*>& layers, int top, std::span<const RowSpan> spans,
+                           glm::vec4 clearColor, ChangeGrid grid, Frame& out, std::vector<PixelRect>& changed,
+                           CompositeScratch& scratch);
+// The same with buffers of its own.
 void compositeSpansChanges(const std::vector<const Layer*>& layers, int top, std::span<const RowSpan> spans,
                            glm::vec4 clearColor, ChangeGrid grid, Frame& out, std::vector<PixelRect>& changed);
 // compositeSpansChanges over a whole rectangle.

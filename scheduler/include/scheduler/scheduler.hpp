@@ -154,6 +154,8 @@ private:
     // After the control's filter left budget over: raises objects in decreasing importance
     // (Work::order), each toward the finest level its range allows, while the prediction fits.
     void raiseWithinRange();
+    // Raises `object` one level at a time toward `finest` while the prediction fits the budget.
+    void raiseWhileFits(int object, int finest);
     // Sorts the visible objects into Work::order by importance (ties by index).
     void sortByImportance(bool increasing);
     // Lowers objects in Work::order (I <= 1 first when protecting) until the prediction fits,
