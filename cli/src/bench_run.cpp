@@ -248,11 +248,13 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewCon
         walk.push_back(next);
     }
     const evaluation::ViewSetup& setup = *context.setup;
+    // What a search evaluates (fitness only), on both paths.
+    const metrics::MetricParameters search = evaluation::searchParameters(prepared.metrics);
     std::vector<EvalPathRow> rows;
     for (const auto& [workload, set] :
          {std::pair<std::string, const std::vector<optimizer::Combination>*>{"random", &random}, {"walk", &walk}}) {
         // Full path first: its fitness is what the fast path is compared with.
-        evaluation::FullRenderEvaluator full(setup, *prepared.renderer, prepared.metrics);
+        evaluation::FullRenderEvaluator full(setup, *prepared.renderer, search);
         full.evaluate(set->front());  // warm-up: buffers sized, GL state touched
         std::vector<double> fullFitness;
         auto start = Clock::now();
@@ -272,7 +274,7 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewCon
         };
         {
             // Batches of 12, a swarm iteration's worth, spread over the threads.
-            evaluation::LayerEvaluator fast(setup, prepared.metrics, options.threads);
+            evaluation::LayerEvaluator fast(setup, search, options.threads);
             std::vector<optimizer::Score> scores(set->size());
             fast.evaluate(set->front());
             start = Clock::now();
@@ -284,7 +286,7 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewCon
             addFast("batch", options.threads, scores, secondsSince(start));
         }
         {
-            evaluation::LayerEvaluator fast(setup, prepared.metrics, 1);
+            evaluation::LayerEvaluator fast(setup, search, 1);
             std::vector<optimizer::Score> scores;
             fast.evaluate(set->front());
             start = Clock::now();

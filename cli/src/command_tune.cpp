@@ -200,8 +200,8 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
             view.resumed = true;
             scenes::validateCombination(prepared.scene, view.optimizerLevels);
             view.setup = std::make_unique<evaluation::ViewSetup>(prepared.scene, view.camera, *prepared.renderer);
-            view.evaluator =
-                std::make_unique<evaluation::LayerEvaluator>(*view.setup, prepared.metrics, options.optimize.threads);
+            view.evaluator = std::make_unique<evaluation::LayerEvaluator>(
+                *view.setup, evaluation::searchParameters(prepared.metrics), options.optimize.threads);
         } else {
             const auto start = std::chrono::steady_clock::now();
             ViewContext context = prepareView(prepared, viewIndex, options.optimize);

@@ -71,12 +71,13 @@ ViewContext prepareView(PreparedScene& prepared, int view, const OptimizeOptions
     ViewContext context;
     const scenes::Camera& camera = prepared.scene.views[view];
     context.setup = std::make_unique<evaluation::ViewSetup>(prepared.scene, camera, *prepared.renderer);
+    // The search scores fitness only; the answer's precision/recall come from runOptimizer's
+    // full render with prepared.metrics.
+    const metrics::MetricParameters search = evaluation::searchParameters(prepared.metrics);
     if (options.evalPath == "full") {
-        context.evaluator =
-            std::make_unique<evaluation::FullRenderEvaluator>(*context.setup, *prepared.renderer, prepared.metrics);
+        context.evaluator = std::make_unique<evaluation::FullRenderEvaluator>(*context.setup, *prepared.renderer, search);
     } else {
-        context.evaluator =
-            std::make_unique<evaluation::LayerEvaluator>(*context.setup, prepared.metrics, options.threads);
+        context.evaluator = std::make_unique<evaluation::LayerEvaluator>(*context.setup, search, options.threads);
     }
     context.cost = std::make_unique<evaluation::TimeModelCost>(*context.setup, prepared.estimator);
     context.problem.levelCounts = context.setup->levelCounts();

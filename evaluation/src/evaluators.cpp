@@ -9,9 +9,14 @@
 
 namespace lodopt::evaluation {
 
-const std::vector<std::string>& componentNames() {
-    static const std::vector<std::string> names = {"ssim", "boundary_entropy", "information_entropy", "precision",
-                                                   "recall"};
+metrics::MetricParameters searchParameters(metrics::MetricParameters parameters) {
+    parameters.computePrecisionRecall = false;
+    return parameters;
+}
+
+std::vector<std::string> componentNames(bool precisionRecall) {
+    std::vector<std::string> names = {"ssim", "boundary_entropy", "information_entropy"};
+    if (precisionRecall) names.insert(names.end(), {"precision", "recall"});
     return names;
 }
 
@@ -21,9 +26,12 @@ optimizer::Score toScore(const metrics::MetricResult& result) {
     score.components[0] = result.ssimFidelity;
     score.components[1] = result.boundaryEntropy.fidelity;
     score.components[2] = result.informationEntropy.fidelity;
-    score.components[3] = result.precision;
-    score.components[4] = result.recall;
-    score.componentCount = 5;
+    score.componentCount = 3;
+    if (result.precisionRecallComputed) {
+        score.components[3] = result.precision;
+        score.components[4] = result.recall;
+        score.componentCount = 5;
+    }
     return score;
 }
 

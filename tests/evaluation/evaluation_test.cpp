@@ -156,6 +156,34 @@ TEST(Evaluators, BatchScoresDoNotDependOnThreadCountOrOrder) {
     }
 }
 
+// A search skips precision/recall (not fused): same fitness and fidelities, two fewer
+// components, on both paths.
+TEST(Evaluators, SearchParametersSkipOnlyPrecisionAndRecall) {
+    scenes::Scene scene = scenes::makeHarborScene();
+    renderer::Renderer renderer(scene, settings(128));
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    const metrics::MetricParameters all;
+    const metrics::MetricParameters search = evaluation::searchParameters(all);
+    EXPECT_FALSE(search.computePrecisionRecall);
+    EXPECT_EQ(search.ssimWeight, all.ssimWeight);
+    evaluation::LayerEvaluator fastAll(setup, all), fastSearch(setup, search);
+    evaluation::FullRenderEvaluator fullSearch(setup, renderer, search);
+    EXPECT_EQ(fastAll.componentNames().size(), 5u);
+    EXPECT_EQ(fastSearch.componentNames(), (std::vector<std::string>{"ssim", "boundary_entropy", "information_entropy"}));
+    std::mt19937 random(2);
+    for (int trial = 0; trial < 6; ++trial) {
+        const optimizer::Combination combination = randomCombination(setup.levelCounts(), random);
+        const optimizer::Score a = fastAll.evaluate(combination), b = fastSearch.evaluate(combination);
+        const optimizer::Score c = fullSearch.evaluate(combination);
+        EXPECT_EQ(a.componentCount, 5);
+        ASSERT_EQ(b.componentCount, 3);
+        EXPECT_EQ(c.componentCount, 3);
+        EXPECT_EQ(a.fitness, b.fitness);
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(a.components[k], b.components[k]) << k;
+        EXPECT_NEAR(b.fitness, c.fitness, 1e-3);
+    }
+}
+
 TEST(Hints, DistancesAndCoverageArePlausible) {
     scenes::Scene scene = scenes::makeHarborScene();
     renderer::Renderer renderer(scene, settings(128));

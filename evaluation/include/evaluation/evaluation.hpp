@@ -99,10 +99,17 @@ private:
     double mSetupSeconds = 0.0;
 };
 
-// Names of the score components both evaluators report, in Score::components order.
-const std::vector<std::string>& componentNames();
+// What a search needs of the metrics: `parameters` without precision/recall. Those are
+// reported, never fused into the fitness, and cost about a tenth of the fast path's time
+// (perf, forest at 512²); an answer's full metrics come from a FullRenderEvaluator built with
+// the user's parameters.
+metrics::MetricParameters searchParameters(metrics::MetricParameters parameters);
+
+// Names of the score components the evaluators report, in Score::components order: the three
+// fidelities, then precision and recall when `precisionRecall`.
+std::vector<std::string> componentNames(bool precisionRecall = true);
 // A metrics result as an optimizer score (fitness + ssim, boundary and information
-// fidelities, precision, recall).
+// fidelities, then precision and recall when they were computed).
 optimizer::Score toScore(const metrics::MetricResult& result);
 
 // Where the fast path updates the metrics after a level change. Both give identical scores.
@@ -121,9 +128,11 @@ public:
     optimizer::Score evaluate(const optimizer::Combination& combination) override;
     void evaluateBatch(std::span<const optimizer::Combination> combinations,
                        std::span<optimizer::Score> scores) override;
-    std::vector<std::string> componentNames() const override { return evaluation::componentNames(); }
+    std::vector<std::string> componentNames() const override {
+        return evaluation::componentNames(mParameters.computePrecisionRecall);
+    }
 
-    // Full metrics of a combination (every component), through state 0.
+    // Metrics of a combination (every component its parameters compute), through state 0.
     metrics::MetricResult metricsOf(const optimizer::Combination& combination);
     // The composited image of a combination.
     renderer::Frame imageOf(const optimizer::Combination& combination);
@@ -141,7 +150,9 @@ public:
     FullRenderEvaluator(const ViewSetup& setup, renderer::Renderer& renderer,
                         const metrics::MetricParameters& parameters);
     optimizer::Score evaluate(const optimizer::Combination& combination) override;
-    std::vector<std::string> componentNames() const override { return evaluation::componentNames(); }
+    std::vector<std::string> componentNames() const override {
+        return evaluation::componentNames(mParameters.computePrecisionRecall);
+    }
     metrics::MetricResult metricsOf(const optimizer::Combination& combination);
 
 private:
