@@ -201,7 +201,8 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
             scenes::validateCombination(prepared.scene, view.optimizerLevels);
             view.setup = std::make_unique<evaluation::ViewSetup>(prepared.scene, view.camera, *prepared.renderer);
             view.evaluator = std::make_unique<evaluation::LayerEvaluator>(
-                *view.setup, evaluation::searchParameters(prepared.metrics), options.optimize.threads);
+                *view.setup, evaluation::searchParameters(prepared.metrics), options.optimize.threads,
+                evaluation::DirtyRegions::ChangedPixels, options.optimize.evalStates);
         } else {
             const auto start = std::chrono::steady_clock::now();
             ViewContext context = prepareView(prepared, viewIndex, options.optimize);
@@ -250,6 +251,9 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     refuseExistingCheckpoints(options);
     const auto start = std::chrono::steady_clock::now();
     options.optimize.view = "0";
+    // One evaluator per view stays alive for the whole run: one state per thread, not the
+    // optimizer's default four (memory grows with the view count).
+    options.optimize.evalStates = 1;
     PreparedScene prepared = prepareScene(options.optimize);
     const std::vector<scenes::Camera> cameras = sampleCameras(prepared.scene, options);
     // Held out: every stride-th view, spread along the list (and so along a path).

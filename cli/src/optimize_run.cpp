@@ -77,7 +77,8 @@ ViewContext prepareView(PreparedScene& prepared, int view, const OptimizeOptions
     if (options.evalPath == "full") {
         context.evaluator = std::make_unique<evaluation::FullRenderEvaluator>(*context.setup, *prepared.renderer, search);
     } else {
-        context.evaluator = std::make_unique<evaluation::LayerEvaluator>(*context.setup, search, options.threads);
+        context.evaluator = std::make_unique<evaluation::LayerEvaluator>(
+            *context.setup, search, options.threads, evaluation::DirtyRegions::ChangedPixels, options.evalStates);
     }
     context.cost = std::make_unique<evaluation::TimeModelCost>(*context.setup, prepared.estimator);
     context.problem.levelCounts = context.setup->levelCounts();

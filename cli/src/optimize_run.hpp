@@ -31,6 +31,9 @@ struct OptimizeOptions {
     std::string size = "512x512";
     std::string evalPath = "fast";
     int threads = std::max(1, int(std::thread::hardware_concurrency()));
+    // Fast-path evaluation states (LayerEvaluator); tune keeps one evaluator per view and
+    // lowers this to save memory.
+    int evalStates = evaluation::LayerEvaluator::kDefaultStates;
     std::string weights = "1,1,1";
     std::string profile;
     std::string model;

@@ -164,40 +164,92 @@ private:
 };
 
 LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads,
-                               DirtyRegions regions)
-    : mSetup(setup), mParameters(parameters) {
-    threads = std::max(threads, 1);
-    for (int t = 0; t < threads; ++t) mStates.push_back(std::make_unique<State>(setup, parameters, regions));
+                               DirtyRegions regions, int states)
+    : mSetup(setup), mParameters(parameters), mThreads(std::max(threads, 1)) {
+    const int stateCount = std::max(states, mThreads);
+    for (int t = 0; t < stateCount; ++t) mStates.push_back(std::make_unique<State>(setup, parameters, regions));
+    for (int object : setup.variableObjects()) {
+        std::vector<std::uint64_t> pixels;
+        for (int level : setup.objects()[object].optionLevels) pixels.push_back(setup.layer(object, level).coveredPixels);
+        mOptionPixels.push_back(std::move(pixels));
+    }
 }
 
 LayerEvaluator::~LayerEvaluator() = default;
 
+std::size_t LayerEvaluator::nearestState(const optimizer::Combination& combination,
+                                         const std::vector<std::size_t>& load, std::size_t cap) const {
+    // Cost of a move: the pixels the changed objects' old and new layers cover, an upper bound
+    // of what gets recomposited (re-scoring follows the pixels that really change).
+    std::size_t best = mStates.size();
+    std::uint64_t bestCost = 0;
+    for (std::size_t s = 0; s < mStates.size(); ++s) {
+        if (load[s] >= cap) continue;
+        const optimizer::Combination& current = mPlanned[s];
+        std::uint64_t cost = 0;
+        for (std::size_t v = 0; v < combination.size() && (best == mStates.size() || cost < bestCost); ++v) {
+            if (combination[v] != current[v]) {
+                cost += mOptionPixels[v][std::size_t(current[v])] + mOptionPixels[v][std::size_t(combination[v])];
+            }
+        }
+        if (best == mStates.size() || cost < bestCost) {
+            best = s;
+            bestCost = cost;
+        }
+    }
+    return best;
+}
+
 optimizer::Score LayerEvaluator::evaluate(const optimizer::Combination& combination) {
-    mStates[0]->moveTo(mSetup, combination);
-    return toScore(mStates[0]->metrics.result());
+    mPlanned.resize(mStates.size());
+    for (std::size_t s = 0; s < mStates.size(); ++s) mPlanned[s] = mStates[s]->current;
+    const std::vector<std::size_t> load(mStates.size(), 0);
+    State& state = *mStates[nearestState(combination, load, 1)];
+    state.moveTo(mSetup, combination);
+    return toScore(state.metrics.result());
 }
 
 void LayerEvaluator::evaluateBatch(std::span<const optimizer::Combination> combinations,
                                    std::span<optimizer::Score> scores) {
-    const std::size_t threads = std::min(mStates.size(), combinations.size());
-    if (threads <= 1) {
-        for (std::size_t k = 0; k < combinations.size(); ++k) scores[k] = evaluate(combinations[k]);
+    if (combinations.empty()) return;
+    // Each candidate goes to its nearest state, at most `cap` per state so that every thread
+    // gets work; a state's candidates are evaluated in batch order by one thread. Scores do
+    // not depend on the assignment (bit-exact metrics), only the time does.
+    const std::size_t threads = std::min<std::size_t>(std::size_t(mThreads), combinations.size());
+    const std::size_t cap = (combinations.size() + threads - 1) / threads;
+    mPlanned.resize(mStates.size());
+    for (std::size_t s = 0; s < mStates.size(); ++s) mPlanned[s] = mStates[s]->current;
+    std::vector<std::size_t> load(mStates.size(), 0);
+    std::vector<std::vector<std::size_t>> assigned(mStates.size());
+    for (std::size_t k = 0; k < combinations.size(); ++k) {
+        const std::size_t s = nearestState(combinations[k], load, cap);
+        assigned[s].push_back(k);
+        ++load[s];
+        mPlanned[s] = combinations[k];
+    }
+    auto run = [&](std::size_t s) {
+        for (std::size_t k : assigned[s]) {
+            mStates[s]->moveTo(mSetup, combinations[k]);
+            scores[k] = toScore(mStates[s]->metrics.result());
+        }
+    };
+    std::vector<std::size_t> busy;
+    for (std::size_t s = 0; s < mStates.size(); ++s) {
+        if (!assigned[s].empty()) busy.push_back(s);
+    }
+    if (threads <= 1 || busy.size() <= 1) {
+        for (std::size_t s : busy) run(s);
         return;
     }
-    // Contiguous chunks: neighbouring candidates tend to share levels, which keeps the
-    // dirty rectangles small. Scores do not depend on the split (bit-exact metrics).
-    std::vector<std::thread> workers;
-    const std::size_t chunk = (combinations.size() + threads - 1) / threads;
-    for (std::size_t t = 0; t < threads; ++t) {
-        workers.emplace_back([&, t] {
-            const std::size_t begin = t * chunk, end = std::min(combinations.size(), begin + chunk);
-            for (std::size_t k = begin; k < end; ++k) {
-                mStates[t]->moveTo(mSetup, combinations[k]);
-                scores[k] = toScore(mStates[t]->metrics.result());
-            }
-        });
-    }
-    for (std::thread& worker : workers) worker.join();
+    // Thread t runs the busy states t, t + threads, ...; the caller's thread takes t = 0.
+    const std::size_t workers = std::min(threads, busy.size());
+    auto runShare = [&](std::size_t t) {
+        for (std::size_t i = t; i < busy.size(); i += workers) run(busy[i]);
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(runShare, t);
+    runShare(0);
+    for (std::thread& worker : pool) worker.join();
 }
 
 metrics::MetricResult LayerEvaluator::metricsOf(const optimizer::Combination& combination) {

@@ -134,7 +134,7 @@ TEST(Evaluators, FastAndFullPathsAgreeOnEveryHarborView) {
     }
 }
 
-TEST(Evaluators, BatchScoresDoNotDependOnThreadCountOrOrder) {
+TEST(Evaluators, BatchScoresDoNotDependOnThreadCountStatesOrOrder) {
     scenes::Scene scene = scenes::makeHarborScene();
     renderer::Renderer renderer(scene, settings(192));
     evaluation::ViewSetup setup(scene, scene.views[1], renderer);
@@ -143,15 +143,29 @@ TEST(Evaluators, BatchScoresDoNotDependOnThreadCountOrOrder) {
     std::vector<optimizer::Combination> batch;
     for (int k = 0; k < 24; ++k) batch.push_back(randomCombination(setup.levelCounts(), random));
     std::vector<optimizer::Score> serial(batch.size()), parallel(batch.size()), reversed(batch.size());
+    std::vector<optimizer::Score> oneState(batch.size()), manyStates(batch.size());
     evaluation::LayerEvaluator one(setup, parameters, 1);
     evaluation::LayerEvaluator three(setup, parameters, 3);
+    evaluation::LayerEvaluator single(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels, 1);
+    evaluation::LayerEvaluator many(setup, parameters, 2, evaluation::DirtyRegions::ChangedPixels, 7);
     one.evaluateBatch(batch, serial);
     three.evaluateBatch(batch, parallel);
     std::vector<optimizer::Combination> backwards(batch.rbegin(), batch.rend());
     one.evaluateBatch(backwards, reversed);
+    // Split into uneven batches, so states are left at different candidates in between.
+    for (std::size_t begin = 0; begin < batch.size();) {
+        const std::size_t count = std::min<std::size_t>(1 + begin % 5, batch.size() - begin);
+        const std::span<const optimizer::Combination> part(batch.data() + begin, count);
+        single.evaluateBatch(part, std::span<optimizer::Score>(oneState.data() + begin, count));
+        many.evaluateBatch(part, std::span<optimizer::Score>(manyStates.data() + begin, count));
+        begin += count;
+    }
     for (std::size_t k = 0; k < batch.size(); ++k) {
         EXPECT_EQ(serial[k].fitness, parallel[k].fitness) << k;
         EXPECT_EQ(serial[k].fitness, reversed[batch.size() - 1 - k].fitness) << k;
+        EXPECT_EQ(serial[k].fitness, oneState[k].fitness) << k;
+        EXPECT_EQ(serial[k].fitness, manyStates[k].fitness) << k;
+        EXPECT_EQ(serial[k].fitness, one.evaluate(batch[k]).fitness) << k;
         for (int c = 0; c < serial[k].componentCount; ++c) EXPECT_EQ(serial[k].components[c], parallel[k].components[c]);
     }
 }

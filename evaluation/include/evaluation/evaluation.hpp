@@ -16,9 +16,10 @@
 // where an object whose level changed since the state's previous candidate covers pixels (per
 // row, its old and new layers' covered columns), and the metrics are updated incrementally only
 // around the pixels whose color actually changed (tight rectangles per band of rows, merged
-// where one update is cheaper). Per-thread states make batches parallel; because the
-// incremental metrics equal a from-scratch computation to the bit, the scores do not depend on
-// the order or the thread count.
+// where one update is cheaper). Several states, each left at the last candidate it evaluated,
+// serve the candidates nearest to them, and make batches parallel; because the incremental
+// metrics equal a from-scratch computation to the bit, the scores do not depend on which
+// state evaluates a candidate, the order or the thread count.
 // Full path (FullRenderEvaluator, `--eval full`): render the whole combination with OpenGL
 // and compute the metrics from scratch; serial (one GL context).
 #pragma once
@@ -118,11 +119,16 @@ enum class DirtyRegions {
     ObjectBounds,   // the changed objects' whole bounding rectangles: the earlier way, kept to measure against
 };
 
-// The fast path. `threads` >= 1 states evaluate a batch in parallel.
+// The fast path. It keeps `states` >= `threads` evaluation states (each the last candidate it
+// evaluated: composite + incremental metrics, ~12 MB at 512²) and gives each candidate to the
+// state that needs the least recompositing (kStateChoice): a swarm revisits the neighbourhoods
+// of several particles, and a state left near one of them makes the next move there cheap.
+// A batch is spread over up to `threads` threads, each state used by one thread at a time.
 class LayerEvaluator final : public optimizer::Evaluator {
 public:
+    static constexpr int kDefaultStates = 4;
     LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads = 1,
-                   DirtyRegions regions = DirtyRegions::ChangedPixels);
+                   DirtyRegions regions = DirtyRegions::ChangedPixels, int states = kDefaultStates);
     ~LayerEvaluator() override;
 
     optimizer::Score evaluate(const optimizer::Combination& combination) override;
@@ -139,9 +145,17 @@ public:
 
 private:
     struct State;
+    // Index of the state whose combination is cheapest to move to `combination`, among those
+    // with load[s] < cap (lowest index on ties).
+    std::size_t nearestState(const optimizer::Combination& combination, const std::vector<std::size_t>& load,
+                             std::size_t cap) const;
     const ViewSetup& mSetup;
     metrics::MetricParameters mParameters;
+    int mThreads = 1;
     std::vector<std::unique_ptr<State>> mStates;
+    std::vector<std::vector<std::uint64_t>> mOptionPixels;  // [variable][option] covered pixels
+    // Per state, the combination it will hold once the batch being assigned is evaluated.
+    std::vector<optimizer::Combination> mPlanned;
 };
 
 // The full path: renders every candidate and scores it from scratch.
