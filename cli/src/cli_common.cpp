@@ -64,4 +64,12 @@ void checkIdentity(const std::string& path, const nlohmann::json& was, const nlo
     }
 }
 
+std::vector<bool> heldOutViews(int count, int holdout) {
+    std::vector<bool> heldOut(std::size_t(std::max(count, 0)), false);
+    if (holdout < 1 || holdout >= count) return heldOut;
+    const int stride = count / holdout;
+    for (int j = 0; j < holdout; ++j) heldOut[std::size_t(j * stride + (stride - 1 - j % stride))] = true;
+    return heldOut;
+}
+
 }  // namespace lodopt::cli

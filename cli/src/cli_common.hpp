@@ -41,6 +41,12 @@ void checkIdentity(const std::string& path, const nlohmann::json& was, const nlo
 
 // Parses "0,2,1" into integers; throws UsageError naming `what`.
 std::vector<int> parseIntList(const std::string& text, const std::string& what);
+
+// Which of `count` views a tuning run holds out (1 <= holdout < count): one in each run of
+// count / holdout views, at a position that steps back by one from run to run, so that views
+// sampled in turn around V named views are not all held out around the same one when the
+// run length is a multiple of V.
+std::vector<bool> heldOutViews(int count, int holdout);
 // Parses "512x512".
 void parseSize(const std::string& text, int& width, int& height);
 

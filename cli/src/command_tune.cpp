@@ -256,17 +256,13 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     options.optimize.evalStates = 1;
     PreparedScene prepared = prepareScene(options.optimize);
     const std::vector<scenes::Camera> cameras = sampleCameras(prepared.scene, options);
-    // Held out: every stride-th view, spread along the list (and so along a path).
     std::vector<TuneView> views(cameras.size());
-    const int stride = options.views / holdout;
-    int heldOut = 0;
+    const std::vector<bool> heldOutFlags = heldOutViews(options.views, holdout);
     for (int k = 0; k < options.views; ++k) {
         views[std::size_t(k)].camera = cameras[std::size_t(k)];
-        if (k % stride == stride - 1 && heldOut < holdout) {
-            views[std::size_t(k)].heldOut = true;
-            ++heldOut;
-        }
+        views[std::size_t(k)].heldOut = heldOutFlags[std::size_t(k)];
     }
+    const int heldOut = holdout;
     prepareViews(options, prepared, views, output);
 
     const scheduler::FeatureMode mode = parseFeatureMode(options.features);

@@ -27,6 +27,7 @@
 #include "scheduler/coefficients.hpp"
 #include "timemodel/features.hpp"
 #include "timemodel/profile.hpp"
+#include "cli_common.hpp"
 
 namespace {
 
@@ -191,6 +192,34 @@ bool SchedulerCli::sCalibrated = false;
 CommandResult SchedulerCli::sTune;
 
 }  // namespace
+
+// 16 views sampled in turn around 4 named views: the 4 held out are around 4 different ones
+// (the first version held out views 3, 7, 11, 15: all around the last named view).
+TEST(TuneHoldout, SpreadOverTheListAndOverTheNamedViews) {
+    const std::vector<bool> sixteen = lodopt::cli::heldOutViews(16, 4);
+    std::vector<int> positions;
+    for (int k = 0; k < 16; ++k) {
+        if (sixteen[std::size_t(k)]) positions.push_back(k);
+    }
+    ASSERT_EQ(positions, (std::vector<int>{3, 6, 9, 12}));
+    std::vector<bool> namedViews(4, false);
+    for (int k : positions) namedViews[std::size_t(k % 4)] = true;
+    EXPECT_EQ(std::count(namedViews.begin(), namedViews.end(), true), 4);
+    // One per run of count / holdout views, the default quarter included; never out of range.
+    for (int count = 2; count <= 40; ++count) {
+        for (int holdout = 1; holdout < count; ++holdout) {
+            const std::vector<bool> flags = lodopt::cli::heldOutViews(count, holdout);
+            ASSERT_EQ(flags.size(), std::size_t(count));
+            EXPECT_EQ(std::count(flags.begin(), flags.end(), true), holdout) << count << " " << holdout;
+            const int stride = count / holdout;
+            for (int j = 0; j < holdout; ++j) {
+                EXPECT_EQ(std::count(flags.begin() + j * stride, flags.begin() + (j + 1) * stride, true), 1);
+            }
+        }
+    }
+    const std::vector<bool> none = lodopt::cli::heldOutViews(4, 4);  // out of range: none held out
+    EXPECT_EQ(std::count(none.begin(), none.end(), true), 0);
+}
 
 TEST_F(SchedulerCli, TuneReportsTunedAndPublishedFractions) {
     ASSERT_EQ(sTune.exitCode, 0) << sTune.output;
