@@ -52,6 +52,7 @@ struct ScheduleOptions {
     int frames = 0;
     int stride = 1;
     int repeats = 3;
+    std::string frameTime = "median";  // statistic of the timed draws: median or min
     int batch = 25;
     bool resume = false;
     std::string outDir = "out/schedule";
@@ -82,7 +83,8 @@ nlohmann::json checkpointIdentity(const ScheduleOptions& o, const scheduler::Sch
             {"feedback-beta", o.beta},
             {"frames", o.frames},
             {"stride", o.stride},
-            {"repeats", o.repeats}};
+            {"repeats", o.repeats},
+            {"frame-time", o.frameTime}};
 }
 
 // Fused fitness of `frame` against `reference` (both RGBA renders of one size).
@@ -188,6 +190,8 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
 
     std::unique_ptr<renderer::Renderer> renderer;
     std::string glRenderer;
+    const renderer::Renderer::Statistic statistic =
+        options.frameTime == "min" ? renderer::Renderer::Statistic::Min : renderer::Renderer::Statistic::Median;
     if (options.render) {
         renderer = std::make_unique<renderer::Renderer>(scene, settings);
         glRenderer = renderer->glRendererString();
@@ -300,9 +304,9 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
                     row.baselineFitness = fitnessOf(frame, referenceFrame, metricParameters);
                 }
             }
-            row.measuredMs = renderer->timeRender(row.decision.levels, camera, options.repeats, 1);
+            row.measuredMs = renderer->timeRender(row.decision.levels, camera, options.repeats, 1, statistic);
             if (!options.noBaseline)
-                row.baselineMeasuredMs = renderer->timeRender(baseline, camera, options.repeats, 1);
+                row.baselineMeasuredMs = renderer->timeRender(baseline, camera, options.repeats, 1, statistic);
             if (!options.noFeedback) frameScheduler.reportMeasuredMs(row.measuredMs);
         }
         row.feedbackScale = frameScheduler.model().feedbackScale();
@@ -367,6 +371,8 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         {"features", scheduler::toString(mode)},
         {"switch_control", parameters.switchControl.enabled},
         {"feedback", options.render && !options.noFeedback},
+        {"frame_time", options.render ? nlohmann::json{{"statistic", options.frameTime}, {"draws", options.repeats}}
+                                      : nlohmann::json(nullptr)},
         {"coefficients", options.coefficients.empty() ? "published defaults" : options.coefficients},
         {"time_model", estimator.name},
         {"objects", index.objectCount()},
@@ -473,8 +479,12 @@ void addScheduleCommand(CLI::App& app) {
     command->add_option("--stride", options->stride, "Take every K-th frame of the path")
         ->check(CLI::Range(1, 1000000))
         ->capture_default_str();
-    command->add_option("--repeats", options->repeats, "With --render: timed draws per frame (median)")
+    command->add_option("--repeats", options->repeats, "With --render: timed draws per frame")
         ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    command->add_option("--frame-time", options->frameTime,
+                        "With --render: a frame's measured time is the median or the least of its timed draws")
+        ->check(CLI::IsMember({"median", "min"}))
         ->capture_default_str();
     command->add_option("--batch", options->batch, "Frames per checkpoint (the unit an interrupt waits for)")
         ->check(CLI::Range(1, 1000000))

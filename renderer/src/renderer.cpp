@@ -337,7 +337,7 @@ void Renderer::drawAndFinish(const scenes::Combination& combination, const scene
 }
 
 double Renderer::timeRender(const scenes::Combination& combination, const scenes::Camera& camera, int repeats,
-                            int warmup) {
+                            int warmup, Statistic statistic) {
     scenes::validateCombination(mImpl->scene, combination);
     repeats = std::max(repeats, 1);
     for (int i = 0; i < warmup; ++i) drawAndFinish(combination, camera);
@@ -351,6 +351,7 @@ double Renderer::timeRender(const scenes::Combination& combination, const scenes
         samples.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
     }
     std::sort(samples.begin(), samples.end());
+    if (statistic == Statistic::Min) return samples.front();
     const std::size_t mid = samples.size() / 2;
     return samples.size() % 2 ? samples[mid] : 0.5 * (samples[mid - 1] + samples[mid]);
 }

@@ -1,6 +1,8 @@
 // Renderer: determinism, layers + composite == full render, timing sanity, image files.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <cstdlib>
 #include <filesystem>
 #include <random>
@@ -165,6 +167,10 @@ TEST(Renderer, TimingIsPositiveAndFinite) {
     double ms = renderer.timeRender(scenes::referenceCombination(scene), scene.views[0], 3, 1);
     EXPECT_GT(ms, 0.0);
     EXPECT_LT(ms, 60'000.0);
+    const double least = renderer.timeRender(scenes::referenceCombination(scene), scene.views[0], 3, 1,
+                                             renderer::Renderer::Statistic::Min);
+    EXPECT_GT(least, 0.0);
+    EXPECT_TRUE(std::isfinite(least));
 }
 
 TEST(Renderer, RejectsBadSizesAndCombinations) {

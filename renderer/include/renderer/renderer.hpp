@@ -93,11 +93,13 @@ public:
     Frame render(const scenes::Combination& combination, const scenes::Camera& camera);
     // Draws without reading pixels back, then glFinish: for timing only.
     void drawAndFinish(const scenes::Combination& combination, const scenes::Camera& camera);
-    // Median wall time in ms of drawAndFinish over `repeats` after `warmup` unmeasured runs
-    // (steady clock around the draw + glFinish). GL timer queries miss llvmpipe's
-    // rasterization, so they are not used.
+    // Wall time in ms of drawAndFinish over `repeats` after `warmup` unmeasured runs (steady
+    // clock around the draw + glFinish): their median, or their least (what the calibration's
+    // default wall-min clock fits; others' load only ever adds time). GL timer queries miss
+    // llvmpipe's rasterization, so they are not used.
+    enum class Statistic { Median, Min };
     double timeRender(const scenes::Combination& combination, const scenes::Camera& camera, int repeats = 5,
-                      int warmup = 1);
+                      int warmup = 1, Statistic statistic = Statistic::Median);
 
     Layer renderLayer(int object, int level, const scenes::Camera& camera);
 
