@@ -5,29 +5,49 @@
 
 namespace lodopt::evaluation {
 
+namespace {
+
+// A model is fitted to measured times; guard the optimizer against a broken one.
+double clampMs(double ms) { return std::isfinite(ms) ? std::max(ms, 0.0) : 0.0; }
+
+}  // namespace
+
 TimeModelCost::TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator)
     : mSetup(setup),
       mTable(setup.scene(), setup.camera(), setup.width(), setup.height()),
-      mEstimator(std::move(estimator)) {}
+      mEstimator(std::move(estimator)) {
+    const std::vector<int>& variables = setup.variableObjects();
+    scenes::Combination fixedOnly = setup.toScene(optimizer::Combination(variables.size(), 0));
+    for (int object : variables) fixedOnly[std::size_t(object)] = scenes::kNotDrawn;
+    mFixed = mTable.features(fixedOnly);
+    for (int object : variables) {
+        std::vector<timemodel::FrameFeatures> options;
+        for (int level : setup.objects()[std::size_t(object)].optionLevels) {
+            options.push_back(mTable.contribution(object, level));
+        }
+        mOptions.push_back(std::move(options));
+    }
+}
+
+timemodel::FrameFeatures TimeModelCost::featuresOf(const optimizer::Combination& combination) const {
+    timemodel::FrameFeatures features = mFixed;
+    for (std::size_t v = 0; v < combination.size(); ++v) features += mOptions[v][std::size_t(combination[v])];
+    return features;
+}
 
 double TimeModelCost::predictSceneMs(const scenes::Combination& combination) const {
-    const double ms = mEstimator(mTable.features(combination));
-    // A model is fitted to measured times; guard the optimizer against a broken one.
-    return std::isfinite(ms) ? std::max(ms, 0.0) : 0.0;
+    return clampMs(mEstimator(mTable.features(combination)));
 }
 
 double TimeModelCost::predictMs(const optimizer::Combination& combination) const {
-    return predictSceneMs(mSetup.toScene(combination));
+    return clampMs(mEstimator(featuresOf(combination)));
 }
 
 double TimeModelCost::deltaMs(const optimizer::Combination& combination, int variable, int newLevel) const {
-    const scenes::Combination levels = mSetup.toScene(combination);
-    const int object = mSetup.variableObjects()[variable];
-    const int oldLevel = levels[object];
-    const int level = mSetup.objects()[object].optionLevels[newLevel];
-    timemodel::FrameFeatures before = mTable.features(levels);
-    timemodel::FrameFeatures after = before + mTable.delta(object, oldLevel, level);
-    auto clampMs = [](double ms) { return std::isfinite(ms) ? std::max(ms, 0.0) : 0.0; };
+    const std::vector<timemodel::FrameFeatures>& options = mOptions[std::size_t(variable)];
+    const timemodel::FrameFeatures before = featuresOf(combination);
+    const timemodel::FrameFeatures after =
+        before + (options[std::size_t(newLevel)] - options[std::size_t(combination[std::size_t(variable)])]);
     return clampMs(mEstimator(after)) - clampMs(mEstimator(before));
 }
 

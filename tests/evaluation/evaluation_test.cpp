@@ -215,6 +215,34 @@ TEST(Hints, DistancesAndCoverageArePlausible) {
     }
 }
 
+// Skipped objects are summed once; the variables' sum must give the whole scene's features.
+TEST(TimeModelCost, SkippedObjectsCountAtTheirFixedLevel) {
+    scenes::Scene scene = skipScene();
+    renderer::Renderer renderer(scene, settings(96));
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    ASSERT_GT(setup.skipSummary().outsideFrustum + setup.skipSummary().hidden, 0);
+    auto model = [](const timemodel::FrameFeatures& f) {
+        return 1e-3 * f[timemodel::Feature::kTriangles] + 1e-2 * f[timemodel::Feature::kDrawnObjects] +
+               1e-6 * f[timemodel::Feature::kPixels] + 1e-1 * f[timemodel::Feature::kBoundingBoxes];
+    };
+    evaluation::TimeModelCost cost(setup, model);
+    const std::vector<int> counts = setup.levelCounts();
+    std::mt19937 random(4);
+    for (int trial = 0; trial < 8; ++trial) {
+        const optimizer::Combination combination = randomCombination(counts, random);
+        const scenes::Combination levels = setup.toScene(combination);
+        const double whole = model(timemodel::computeFrameFeatures(scene, levels, scene.views[0], 96, 96));
+        EXPECT_NEAR(cost.predictMs(combination), whole, 1e-9 * whole);
+        EXPECT_NEAR(cost.predictMs(combination), cost.predictSceneMs(levels), 1e-12 * whole);
+        for (std::size_t v = 0; v < counts.size(); ++v) {
+            optimizer::Combination moved = combination;
+            moved[v] = (moved[v] + 1) % counts[v];
+            EXPECT_NEAR(cost.deltaMs(combination, int(v), moved[v]), cost.predictMs(moved) - cost.predictMs(combination),
+                        1e-12 * whole);
+        }
+    }
+}
+
 TEST(TimeModelCost, PredictsThroughTheFeatureTable) {
     scenes::Scene scene = scenes::makeHarborScene();
     renderer::Renderer renderer(scene, settings(128));
