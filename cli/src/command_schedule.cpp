@@ -48,7 +48,7 @@ struct ScheduleOptions {
     bool noSwitchControl = false;
     std::string switchControl;
     std::string switchRule = "hysteresis";
-    double switchMargin = 0.1;
+    double switchMargin = 0.05;
     bool noFeedback = false;
     double beta = 0.3;
     int frames = 0;
@@ -472,12 +472,14 @@ void addScheduleCommand(CLI::App& app) {
     command->add_flag("--no-switch-control", options->noSwitchControl, "Switch levels freely (no hysteresis)");
     command->add_option("--switch-control", options->switchControl,
                         "VMI20 switch control D1,K1,D2,K2,NEAR (default 1,0.5,0.2,1,0)");
-    command->add_option("--switch-rule", options->switchRule,
-                        "hysteresis (switches cost in the decision) or vmi20 (dwell time by distance, VMI20)")
+    command
+        ->add_option("--switch-rule", options->switchRule,
+                     "hysteresis (switches cost in the decision) or vmi20 (dwell time by distance, VMI20)")
         ->check(CLI::IsMember({"hysteresis", "vmi20"}))
         ->capture_default_str();
-    command->add_option("--switch-margin", options->switchMargin,
-                        "Hysteresis: a raise that switches an object only within (1 - M) of the budget")
+    command
+        ->add_option("--switch-margin", options->switchMargin,
+                     "Hysteresis: a raise that switches an object only within (1 - M) of the budget")
         ->check(CLI::Range(0.0, 0.99))
         ->capture_default_str();
     command->add_flag("--no-feedback", options->noFeedback, "With --render: do not correct the model");

@@ -18,10 +18,11 @@
 // decision, with a previous frame: an object with I <= 1 drawn coarser last frame starts at that
 // level; lowering first takes the lowerings that cost no switch (objects entering the view, any
 // level; others back to last frame's coarser level), in increasing importance; after the
-// DONG15 lowering, objects drawn finer last frame get back toward that level (not beyond) in
-// decreasing importance within the budget; the free raise then moves an object drawn last frame
-// only while the prediction stays within (1 − raiseMargin) of the budget (entering objects: the
-// whole budget). Nothing is held against the budget: no forced switches, no frozen objects.
+// DONG15 lowering, objects drawn finer last frame get back to that level (all the way or not
+// at all) in decreasing importance within the budget; the free raise then moves an object
+// drawn last frame only while the prediction stays within (1 − raiseMargin) of the budget
+// (entering objects: the whole budget). Nothing is held against the budget: no forced
+// switches, no frozen objects.
 // Rule Vmi20 (VMI20 §7; tiles always) instead filters the decision: an object drawn in
 // the previous frame whose new level the control does not allow gets the allowed level nearest
 // to the decision's (its old level while its dwell time runs). If the held objects push the
@@ -94,8 +95,8 @@ struct SchedulerCoefficients {
 struct SchedulerParameters {
     double budgetMs = 33.0;  // > 0, finite: milliseconds of predicted render time per frame
     SchedulerCoefficients coefficients;
-    std::vector<double> objectWeights;  // empty, or one finite weight > 0 per object (w of I)
-    bool protectImportant = true;       // DONG15: objects with I > 1 are lowered last
+    std::vector<double> objectWeights;      // empty, or one finite weight > 0 per object (w of I)
+    bool protectImportant = true;           // DONG15: objects with I > 1 are lowered last
     SwitchControlParameters switchControl;  // Tiles: the Vmi20 rule whatever `rule` says
     timemodel::FeedbackParameters feedback;
     Organisation organisation = Organisation::Flat;
@@ -167,8 +168,8 @@ private:
     // Hysteresis rule, before the DONG15 lowering: lowers (as lowerToBudget) only as far as it
     // costs no switch (objects entering the view; back to last frame's coarser level).
     double lowerWithoutSwitches(double ms);
-    // Hysteresis rule, before the free raise: objects drawn finer last frame get back toward
-    // that level (not beyond) in decreasing importance while the whole budget allows.
+    // Hysteresis rule, before the free raise: objects drawn finer last frame get back to that
+    // level (all the way or not at all) in decreasing importance where the whole budget allows.
     void restorePreviousLevels();
     // Sorts the visible objects into Work::order by importance (ties by index).
     void sortByImportance(bool increasing);

@@ -37,12 +37,13 @@ const char* toString(SwitchRule rule);
 // waits 0.2 s per bounding radius of distance after a switch (2 s at 10 radii). Chosen on the
 // forest and city paths (docs/scheduler.md), where they cut the switches per frame the most for
 // the smallest loss of budget use.
-// The hysteresis margin: 10% measured best of 3, 5 and 10% on the forest walk (fewest switches,
-// best fitness) and cost the city nothing against 5% (docs/scheduler.md, Goal 4).
+// The hysteresis margin, 5%: a frame may stop that much under the budget, so it must stay well
+// inside Goal 1's ±10% band (10% failed Scheduler.MeasuredTimeSettlesWithinTenPercentOfTheBudget);
+// the city's switches are the same at 5, 7 and 10% (docs/scheduler.md, Goal 4).
 struct SwitchControlParameters {
     bool enabled = true;
     SwitchRule rule = SwitchRule::Hysteresis;
-    double raiseMargin = 0.1;  // [0, 1): Hysteresis: new raises only within (1 − margin) · budget
+    double raiseMargin = 0.05;  // [0, 1): Hysteresis: new raises only within (1 − margin) · budget
     // Vmi20 only:
     double delta1 = 1.0;        // > 0: Δrate bound at (dist − near) = 1
     double k1 = 0.5;            // >= 0: growth of the Δrate bound with distance
