@@ -47,6 +47,8 @@ struct ScheduleOptions {
     std::string features = "bounds";
     bool noSwitchControl = false;
     std::string switchControl;
+    std::string switchRule = "hysteresis";
+    double switchMargin = 0.05;
     bool noFeedback = false;
     double beta = 0.3;
     int frames = 0;
@@ -79,6 +81,8 @@ nlohmann::json checkpointIdentity(const ScheduleOptions& o, const scheduler::Sch
             {"features", o.features},
             {"no-switch-control", o.noSwitchControl},
             {"switch-control", o.switchControl},
+            {"switch-rule", o.switchRule},
+            {"switch-margin", o.switchMargin},
             {"no-feedback", o.noFeedback},
             {"feedback-beta", o.beta},
             {"frames", o.frames},
@@ -205,6 +209,8 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     parameters.organisation = parseOrganisation(options.organisation);
     parameters.switchControl.enabled = !options.noSwitchControl;
     if (!options.switchControl.empty()) parseSwitchControl(options.switchControl, parameters.switchControl);
+    parameters.switchControl.rule = parseSwitchRule(options.switchRule);
+    parameters.switchControl.raiseMargin = options.switchMargin;
     parameters.feedback.beta = options.beta;
     const scheduler::FeatureMode mode = parseFeatureMode(options.features);
 
@@ -370,6 +376,8 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         {"organisation", scheduler::toString(parameters.organisation)},
         {"features", scheduler::toString(mode)},
         {"switch_control", parameters.switchControl.enabled},
+        {"switch_rule", scheduler::toString(parameters.switchControl.rule)},
+        {"switch_margin", parameters.switchControl.raiseMargin},
         {"feedback", options.render && !options.noFeedback},
         {"frame_time", options.render ? nlohmann::json{{"statistic", options.frameTime}, {"draws", options.repeats}}
                                       : nlohmann::json(nullptr)},
@@ -469,7 +477,17 @@ void addScheduleCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_flag("--no-switch-control", options->noSwitchControl, "Switch levels freely (no hysteresis)");
     command->add_option("--switch-control", options->switchControl,
-                        "Switch control D1,K1,D2,K2,NEAR (default 1,0.5,0.2,1,0)");
+                        "VMI20 switch control D1,K1,D2,K2,NEAR (default 1,0.5,0.2,1,0)");
+    command
+        ->add_option("--switch-rule", options->switchRule,
+                     "hysteresis (switches cost in the decision) or vmi20 (dwell time by distance, VMI20)")
+        ->check(CLI::IsMember({"hysteresis", "vmi20"}))
+        ->capture_default_str();
+    command
+        ->add_option("--switch-margin", options->switchMargin,
+                     "Hysteresis: a raise that switches an object only within (1 - M) of the budget")
+        ->check(CLI::Range(0.0, 0.99))
+        ->capture_default_str();
     command->add_flag("--no-feedback", options->noFeedback, "With --render: do not correct the model");
     command->add_option("--feedback-beta", options->beta, "Feedback gain beta, DONG15 eq. 9")
         ->check(CLI::Range(1e-6, 0.999999))

@@ -145,6 +145,13 @@ void parseSwitchControl(const std::string& text, scheduler::SwitchControlParamet
     }
 }
 
+scheduler::SwitchRule parseSwitchRule(const std::string& text) {
+    for (scheduler::SwitchRule rule : {scheduler::SwitchRule::Hysteresis, scheduler::SwitchRule::Vmi20}) {
+        if (text == scheduler::toString(rule)) return rule;
+    }
+    throw UsageError("--switch-rule: '" + text + "' is not hysteresis or vmi20");
+}
+
 scheduler::SchedulerCoefficients loadCoefficientsOrThrow(const std::string& path) {
     try {
         return scheduler::loadCoefficients(path);

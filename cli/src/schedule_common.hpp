@@ -29,6 +29,8 @@ scheduler::FeatureMode parseFeatureMode(const std::string& text);
 scheduler::Organisation parseOrganisation(const std::string& text);
 // "D1,K1,D2,K2,NEAR" into switch-control parameters; throws UsageError.
 void parseSwitchControl(const std::string& text, scheduler::SwitchControlParameters& parameters);
+// "hysteresis" | "vmi20"; throws UsageError.
+scheduler::SwitchRule parseSwitchRule(const std::string& text);
 // A coefficients file; throws UsageError with the file's message.
 scheduler::SchedulerCoefficients loadCoefficientsOrThrow(const std::string& path);
 

@@ -1,4 +1,5 @@
-// LOD-switch control after VMI20 §7 (see scheduler/switch_control.hpp).
+// LOD-switch control: the VMI20 §7 ranges and the parameters (see scheduler/switch_control.hpp;
+// the hysteresis rule's passes are in scheduler.cpp, inside the decision).
 #include "scheduler/switch_control.hpp"
 
 #include <algorithm>
@@ -20,7 +21,13 @@ void check(bool ok, const char* name, double value, const char* rule) {
 
 }  // namespace
 
+const char* toString(SwitchRule rule) {
+    return rule == SwitchRule::Vmi20 ? "vmi20" : "hysteresis";
+}
+
 void validateSwitchControl(const SwitchControlParameters& p) {
+    check(std::isfinite(p.raiseMargin) && p.raiseMargin >= 0.0 && p.raiseMargin < 1.0, "raiseMargin", p.raiseMargin,
+          "in [0, 1)");
     check(std::isfinite(p.delta1) && p.delta1 > 0.0, "delta1", p.delta1, "finite and > 0");
     check(std::isfinite(p.k1) && p.k1 >= 0.0, "k1", p.k1, "finite and >= 0");
     check(std::isfinite(p.delta2) && p.delta2 >= 0.0, "delta2", p.delta2, "finite and >= 0");
@@ -40,7 +47,7 @@ LevelRange allowedLevels(int current, double secondsSinceSwitch, double distance
                          const SwitchControlParameters& p) {
     const int levels = int(rates.size());
     assert(current >= 0 && current < levels);
-    if (!p.enabled) return {0, levels - 1};
+    if (!p.enabled || p.rule != SwitchRule::Vmi20) return {0, levels - 1};
     const double x = std::max(distance - p.nearDistance, 0.0);
     // 0^0 = 1 in std::pow, so k = 0 gives the constant bound δ, as the formula reads.
     const double dwell = p.delta2 * std::pow(x, p.k2);

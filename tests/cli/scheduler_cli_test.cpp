@@ -287,6 +287,8 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
     const nlohmann::json summary = parseOrFail(result);
     EXPECT_EQ(summary["frames"], 8);
     EXPECT_EQ(summary["path"], "orbit");
+    EXPECT_EQ(summary["switch_rule"], "hysteresis");  // the default (docs/scheduler.md, Goal 4)
+    EXPECT_EQ(summary["switch_margin"].get<double>(), 0.05);
     EXPECT_GT(summary["decision_us"]["max"].get<double>(), 0.0);
     EXPECT_GT(summary["measured_ms"]["mean"].get<double>(), 0.0);
     EXPECT_GT(summary["fitness"]["mean"].get<double>(), 0.0);
@@ -307,6 +309,12 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
     for (std::string line; std::getline(lines, line);) ++rows;
     EXPECT_EQ(rows, 8);
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(out) / "summary.json"));
+    // The paper's rule stays selectable.
+    const CommandResult vmi20 =
+        run("schedule --scene harbor --path " + sPath + " --budget-ms " + std::to_string(sBudget) +
+            " --size 128x128 --profile " + sProfile + " --switch-rule vmi20 --out " + out + "_vmi20 --json --quiet");
+    ASSERT_EQ(vmi20.exitCode, 0) << vmi20.output;
+    EXPECT_EQ(parseOrFail(vmi20)["switch_rule"], "vmi20");
 }
 
 TEST_F(SchedulerCli, BadInputExitsWithTwo) {
@@ -328,6 +336,9 @@ TEST_F(SchedulerCli, BadInputExitsWithTwo) {
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --render --frame-time mean" + common)
                   .exitCode,
               2);
+    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-rule dwell" + common).exitCode,
+              2);
+    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-margin 1" + common).exitCode, 2);
 }
 
 TEST_F(SchedulerCli, FrameTimeCanBeTheLeastOfTheDraws) {

@@ -182,7 +182,8 @@ TEST(Scheduler, BudgetLeftByHeldObjectsGoesToFreeOnes) {
     const SceneIndex index(scene, 64, 64, FeatureMode::Bounds);
     SchedulerParameters p;
     p.coefficients.thresholds.values = {0.5, 1.0};  // every object starts at its coarsest level
-    p.switchControl.delta1 = 0.01;                  // one level per switch
+    p.switchControl.rule = SwitchRule::Vmi20;
+    p.switchControl.delta1 = 0.01;  // one level per switch
     p.switchControl.k1 = 0.0;
     p.switchControl.delta2 = 0.05;  // dwell 0.05 s per radius of distance: seconds here
     p.switchControl.k2 = 1.0;

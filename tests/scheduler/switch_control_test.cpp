@@ -1,8 +1,11 @@
-// Switch control (VMI20 §7): the allowed range of levels, and that it stops an object that
-// oscillates across a distance threshold from switching every frame.
+// Switch control: VMI20 §7's allowed range of levels; that both rules stop an object that
+// oscillates across a distance threshold from switching every frame, and spare budget from
+// swapping between two objects of alternating importance.
 #include "scheduler/switch_control.hpp"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "fixtures.hpp"
 #include "scheduler/scheduler.hpp"
@@ -24,14 +27,22 @@ TEST(SwitchControl, RatesFromTriangles) {
 
 TEST(SwitchControl, DisabledAllowsEveryLevel) {
     SwitchControlParameters p;
+    p.rule = SwitchRule::Vmi20;
     p.enabled = false;
     const LevelRange r = allowedLevels(2, 0.0, 100.0, kRates, p);
     EXPECT_EQ(r.finest, 0);
     EXPECT_EQ(r.coarsest, 4);
+    // The hysteresis rule holds nothing outside the decision.
+    p.enabled = true;
+    p.rule = SwitchRule::Hysteresis;
+    const LevelRange h = allowedLevels(2, 0.0, 100.0, kRates, p);
+    EXPECT_EQ(h.finest, 0);
+    EXPECT_EQ(h.coarsest, 4);
 }
 
 TEST(SwitchControl, HoldsUntilTheDwellTimeHasPassed) {
     SwitchControlParameters p;
+    p.rule = SwitchRule::Vmi20;
     p.delta2 = 0.1;
     p.k2 = 1.0;
     p.nearDistance = 2.0;
@@ -49,6 +60,7 @@ TEST(SwitchControl, HoldsUntilTheDwellTimeHasPassed) {
 
 TEST(SwitchControl, StepSizeGrowsWithDistance) {
     SwitchControlParameters p;
+    p.rule = SwitchRule::Vmi20;
     p.delta1 = 0.1;
     p.k1 = 1.0;
     p.delta2 = 0.0;
@@ -74,19 +86,29 @@ TEST(SwitchControl, RejectsBadParameters) {
     p = {};
     p.k2 = -1.0;
     EXPECT_THROW(validateSwitchControl(p), std::invalid_argument);
+    p = {};
+    p.raiseMargin = 1.0;
+    EXPECT_THROW(validateSwitchControl(p), std::invalid_argument);
     EXPECT_NO_THROW(validateSwitchControl(SwitchControlParameters{}));
 }
 
 // One blob; the eye swings back and forth across the distance threshold (20 radii) every
 // frame, and the budget is exactly the cost of the threshold's level, so without control the
-// level flips every frame. With it (dwell 0.1 s · (20 − 2)^0.5 ≈ 0.42 s ≈ 13 frames) a raise
-// waits for the dwell time; lowering for the budget is forced when it must be.
-int flickerSwitches(bool control) {
+// level flips every frame. VMI20 (dwell 0.1 s · (20 − 2)^0.5 ≈ 0.42 s ≈ 13 frames): a raise
+// waits for the dwell time; lowering for the budget is forced when it must be. Hysteresis:
+// once at level 1, the raise to level 0 is a switch and does not fit within the margin.
+int flickerSwitches(bool control, SwitchRule rule) {
     const scenes::Scene scene = testing::makeGridScene(1, 1, 1.0f);
     const SceneIndex index(scene, 64, 64, FeatureMode::Bounds);
     SchedulerParameters p;
     p.coefficients.thresholds.values = {20.0, 1000.0};
-    p.switchControl = {control, 0.15, 0.5, 0.1, 0.5, 2.0};
+    p.switchControl.enabled = control;
+    p.switchControl.rule = rule;
+    p.switchControl.delta1 = 0.15;
+    p.switchControl.k1 = 0.5;
+    p.switchControl.delta2 = 0.1;
+    p.switchControl.k2 = 0.5;
+    p.switchControl.nearDistance = 2.0;
     const double msPerTriangle = 1e-3;
     FrameScheduler scheduler(index, testing::triangleModel(0.0, msPerTriangle), p);
     const glm::vec3 center = index.shape(0).center;
@@ -105,10 +127,60 @@ int flickerSwitches(bool control) {
 }
 
 TEST(SwitchControl, PreventsFlickerAcrossAThreshold) {
-    const int without = flickerSwitches(false);
-    const int with = flickerSwitches(true);
+    const int without = flickerSwitches(false, SwitchRule::Hysteresis);
     EXPECT_GE(without, 55);  // every frame but the first
-    EXPECT_LE(with, without / 4);
+    EXPECT_LE(flickerSwitches(true, SwitchRule::Vmi20), without / 4);
+    EXPECT_LE(flickerSwitches(true, SwitchRule::Hysteresis), 1);  // 0 → 1 once, then held there
+}
+
+// Two equal objects side by side (top view: A o   o B, the eye 15 units in front of the gap);
+// the budget affords one of them at level 0, the other at level 2. The eye sways sideways by
+// 0.1 every frame, so the more important one (nearer the view axis) alternates: without
+// control the spare budget swaps between them every frame (two switches). VMI20 lets the
+// first swap through (neither had switched) and then holds them for the dwell time; the
+// hysteresis rule gives the budget back to the one drawn finer last frame, and nobody swaps.
+struct SwapRun {
+    int switches = 0;
+    int forced = 0;
+};
+SwapRun swayingEye(const SwitchControlParameters& control) {
+    const scenes::Scene scene = testing::makeGridScene(2, 1, 3.0f);
+    const SceneIndex index(scene, 96, 96, FeatureMode::Bounds);
+    SchedulerParameters p;
+    p.coefficients.thresholds.values = {0.5, 1.0};  // both start at their coarsest level
+    p.switchControl = control;
+    constexpr double kMsPerTriangle = 1e-3;
+    const double t0 = double(scene.objects[0].levels[0].stats.triangles) * kMsPerTriangle;
+    const double t1 = double(scene.objects[0].levels[1].stats.triangles) * kMsPerTriangle;
+    const double t2 = double(scene.objects[0].levels[2].stats.triangles) * kMsPerTriangle;
+    p.budgetMs = t0 + t2 + 0.5 * (t1 - t2);  // one at level 0; the other's step to 1 does not fit
+    FrameScheduler scheduler(index, testing::triangleModel(0.0, kMsPerTriangle), p);
+    SwapRun run;
+    for (int frame = 0; frame < 60; ++frame) {
+        const float sway = frame % 2 == 0 ? -0.05f : 0.05f;
+        const scenes::Camera camera = testing::lookAt(glm::vec3(sway, 2.0f, 15.0f), glm::vec3(sway, 1.5f, 0.0f));
+        const FrameDecision& d = scheduler.decide(camera, frame / 30.0);
+        EXPECT_TRUE(d.budgetMet) << "frame " << frame;
+        EXPECT_EQ(std::min(d.levels[0], d.levels[1]), 0) << "frame " << frame;  // the budget is spent
+        run.switches += d.switches;
+        run.forced += d.forcedSwitches;
+    }
+    return run;
+}
+
+TEST(SwitchControl, HysteresisKeepsSpareBudgetWhereItWas) {
+    SwitchControlParameters off;
+    off.enabled = false;
+    SwitchControlParameters vmi20;
+    vmi20.rule = SwitchRule::Vmi20;
+    const SwapRun free = swayingEye(off);
+    const SwapRun held = swayingEye(vmi20);
+    const SwapRun ours = swayingEye(SwitchControlParameters{});
+    EXPECT_GE(free.switches, 2 * 55);  // a swap every frame
+    EXPECT_GE(held.switches, 2);       // the first swap at least
+    EXPECT_LT(held.switches, free.switches / 4);
+    EXPECT_EQ(ours.switches, 0);
+    EXPECT_EQ(ours.forced, 0);
 }
 
 }  // namespace

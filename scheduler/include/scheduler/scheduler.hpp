@@ -14,7 +14,16 @@
 //     down left over (one step of a large object can free several milliseconds; on the harbor
 //     path without switch control this took the frames predicted within 10% of the budget
 //     from 67% to 94%).
-// Switch control (switch_control.hpp, VMI20 §7) then filters the decision: an object drawn in
+// Switch control (switch_control.hpp), default rule Hysteresis (ours, flat only), inside the
+// decision, with a previous frame: an object with I <= 1 drawn coarser last frame starts at that
+// level; lowering first takes the lowerings that cost no switch (objects entering the view, any
+// level; others back to last frame's coarser level), in increasing importance; after the
+// DONG15 lowering, objects drawn finer last frame get back to that level (all the way or not
+// at all) in decreasing importance within the budget; the free raise then moves an object
+// drawn last frame only while the prediction stays within (1 − raiseMargin) of the budget
+// (entering objects: the whole budget). Nothing is held against the budget: no forced
+// switches, no frozen objects.
+// Rule Vmi20 (VMI20 §7; tiles always) instead filters the decision: an object drawn in
 // the previous frame whose new level the control does not allow gets the allowed level nearest
 // to the decision's (its old level while its dwell time runs). If the held objects push the
 // prediction over the budget, objects are lowered again in increasing importance (I <= 1
@@ -86,9 +95,9 @@ struct SchedulerCoefficients {
 struct SchedulerParameters {
     double budgetMs = 33.0;  // > 0, finite: milliseconds of predicted render time per frame
     SchedulerCoefficients coefficients;
-    std::vector<double> objectWeights;  // empty, or one finite weight > 0 per object (w of I)
-    bool protectImportant = true;       // DONG15: objects with I > 1 are lowered last
-    SwitchControlParameters switchControl;
+    std::vector<double> objectWeights;      // empty, or one finite weight > 0 per object (w of I)
+    bool protectImportant = true;           // DONG15: objects with I > 1 are lowered last
+    SwitchControlParameters switchControl;  // Tiles: the Vmi20 rule whatever `rule` says
     timemodel::FeedbackParameters feedback;
     Organisation organisation = Organisation::Flat;
     QuadtreeParameters quadtree;
@@ -154,8 +163,14 @@ private:
     // After the control's filter left budget over: raises objects in decreasing importance
     // (Work::order), each toward the finest level its range allows, while the prediction fits.
     void raiseWithinRange();
-    // Raises `object` one level at a time toward `finest` while the prediction fits the budget.
-    void raiseWhileFits(int object, int finest);
+    // Raises `object` one level at a time toward `finest` while the prediction fits `budgetMs`.
+    void raiseWhileFits(int object, int finest, double budgetMs);
+    // Hysteresis rule, before the DONG15 lowering: lowers (as lowerToBudget) only as far as it
+    // costs no switch (objects entering the view; back to last frame's coarser level).
+    double lowerWithoutSwitches(double ms);
+    // Hysteresis rule, before the free raise: objects drawn finer last frame get back to that
+    // level (all the way or not at all) in decreasing importance where the whole budget allows.
+    void restorePreviousLevels();
     // Sorts the visible objects into Work::order by importance (ties by index).
     void sortByImportance(bool increasing);
     // Lowers objects in Work::order (I <= 1 first when protecting) until the prediction fits,
@@ -171,6 +186,7 @@ private:
     std::unique_ptr<timemodel::TimeModel> mModel;
     SchedulerParameters mParameters;
     std::unique_ptr<Quadtree> mQuadtree;
+    SwitchControlParameters mFilterControl;  // the VMI20 filter: enabled for Vmi20 or tiles
     FrameObjects mFrame;
     FrameDecision mDecision;
     std::vector<double> mImportance;
