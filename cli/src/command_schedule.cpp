@@ -53,8 +53,11 @@ struct ScheduleOptions {
     double beta = 0.3;
     int frames = 0;
     int stride = 1;
-    int repeats = 3;
-    std::string frameTime = "median";  // statistic of the timed draws: median or min
+    // A frame's measured time: the least of 5 timed draws, the statistic the calibration's
+    // default wall-min clock fits. The median of 3 moved by more than 10% between repeated
+    // measurements of one frame a third of the time on an idle machine (docs/scheduler.md).
+    int repeats = 5;
+    std::string frameTime = "min";
     int batch = 25;
     bool resume = false;
     std::string outDir = "out/schedule";
