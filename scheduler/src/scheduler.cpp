@@ -218,11 +218,23 @@ void FrameScheduler::sortByImportance(bool increasing) {
     });
 }
 
-double FrameScheduler::lowerToBudget(double ms, bool withinRange) {
+double FrameScheduler::lowerToBudget(double ms, LowerLimit limit) {
     const Work& w = *mWork;
     FrameDecision& d = mDecision;
     const double budget = mParameters.budgetMs;
     const bool protect = mParameters.protectImportant;
+    auto coarsestAllowed = [&](int o) {
+        switch (limit) {
+            case LowerLimit::SwitchRange:
+                return mRange[o].coarsest;
+            case LowerLimit::WithoutSwitch:
+                if (mPrevious[o] != scenes::kNotDrawn) return mPrevious[o];
+                break;
+            case LowerLimit::Coarsest:
+                break;
+        }
+        return mIndex.levelCount(o) - 1;
+    };
     // Increasing importance (w.order), objects with I <= 1 first: those with I > 1 only when
     // lowering every other object as far as allowed was not enough.
     for (int pass = 0; pass < (protect ? 2 : 1) && ms > budget; ++pass) {
@@ -230,8 +242,8 @@ double FrameScheduler::lowerToBudget(double ms, bool withinRange) {
             if (ms <= budget) break;
             if (protect && (mImportance[o] > 1.0) != (pass == 1)) continue;
             if (d.levels[o] == scenes::kNotDrawn) continue;
-            const int limit = withinRange ? mRange[o].coarsest : mIndex.levelCount(o) - 1;
-            while (ms > budget && d.levels[o] < limit) {
+            const int coarsest = coarsestAllowed(o);
+            while (ms > budget && d.levels[o] < coarsest) {
                 setLevel(o, d.levels[o] + 1);
                 ms = estimate(d.features);
             }
@@ -256,9 +268,9 @@ void FrameScheduler::decideFlat() {
     }
     double ms = estimate(d.features);
     if (ms > budget) {
-        if (hysteresis) ms = lowerWithoutSwitches(ms);
         sortByImportance(true);
-        lowerToBudget(ms, false);
+        if (hysteresis) ms = lowerToBudget(ms, LowerLimit::WithoutSwitch);
+        lowerToBudget(ms, LowerLimit::Coarsest);
     }
     if (hysteresis) restorePreviousLevels();
     // Raise in decreasing importance, each object as far toward level 0 as the budget allows
@@ -269,29 +281,6 @@ void FrameScheduler::decideFlat() {
     const double switchBudget = hysteresis ? budget * (1.0 - mParameters.switchControl.raiseMargin) : budget;
     sortByImportance(false);
     for (int o : w.order) raiseWhileFits(o, 0, mPrevious[o] == scenes::kNotDrawn ? budget : switchBudget);
-}
-
-double FrameScheduler::lowerWithoutSwitches(double ms) {
-    Work& w = *mWork;
-    FrameDecision& d = mDecision;
-    const double budget = mParameters.budgetMs;
-    const bool protect = mParameters.protectImportant;
-    sortByImportance(true);
-    // As lowerToBudget, over the lowerings that cost no switch: an object entering the view to
-    // any level, one drawn coarser last frame back to that level.
-    for (int pass = 0; pass < (protect ? 2 : 1) && ms > budget; ++pass) {
-        for (int o : w.order) {
-            if (ms <= budget) break;
-            if (protect && (mImportance[o] > 1.0) != (pass == 1)) continue;
-            const int previous = mPrevious[o];
-            const int limit = previous == scenes::kNotDrawn ? mIndex.levelCount(o) - 1 : previous;
-            while (ms > budget && d.levels[o] < limit) {
-                setLevel(o, d.levels[o] + 1);
-                ms = estimate(d.features);
-            }
-        }
-    }
-    return ms;
 }
 
 void FrameScheduler::restorePreviousLevels() {
@@ -354,8 +343,8 @@ void FrameScheduler::applySwitchControl() {
     // Held objects cost more than the decision wanted: lower in increasing importance, first
     // as far as the control allows, then beyond it (forced switches).
     sortByImportance(true);
-    ms = lowerToBudget(ms, true);
-    ms = lowerToBudget(ms, false);
+    ms = lowerToBudget(ms, LowerLimit::SwitchRange);
+    ms = lowerToBudget(ms, LowerLimit::Coarsest);
     if (!mQuadtree) return;
     // Tiles: as Algorithm 1 would have, leave out the last objects of the tile order.
     for (auto it = w.visible.rbegin(); it != w.visible.rend() && ms > mParameters.budgetMs; ++it) {

@@ -165,17 +165,19 @@ private:
     void raiseWithinRange();
     // Raises `object` one level at a time toward `finest` while the prediction fits `budgetMs`.
     void raiseWhileFits(int object, int finest, double budgetMs);
-    // Hysteresis rule, before the DONG15 lowering: lowers (as lowerToBudget) only as far as it
-    // costs no switch (objects entering the view; back to last frame's coarser level).
-    double lowerWithoutSwitches(double ms);
     // Hysteresis rule, before the free raise: objects drawn finer last frame get back to that
     // level (all the way or not at all) in decreasing importance where the whole budget allows.
     void restorePreviousLevels();
     // Sorts the visible objects into Work::order by importance (ties by index).
     void sortByImportance(bool increasing);
+    // How far lowerToBudget may take an object: its coarsest level; its switch-control limit
+    // (VMI20 filter); or, for the hysteresis rule before the DONG15 lowering, only as far as
+    // it costs no switch (an object entering the view to any level, one drawn coarser last
+    // frame back to that level).
+    enum class LowerLimit { Coarsest, SwitchRange, WithoutSwitch };
     // Lowers objects in Work::order (I <= 1 first when protecting) until the prediction fits,
-    // each at most to its switch-control limit (`withinRange`) or to its coarsest level.
-    double lowerToBudget(double ms, bool withinRange);
+    // each at most to `limit`.
+    double lowerToBudget(double ms, LowerLimit limit);
     void finishFrame(double timeSeconds);
     double estimate(const timemodel::FrameFeatures& features) const { return mModel->estimateMs(features); }
     const timemodel::FrameFeatures& contribution(int object, int level) const;
