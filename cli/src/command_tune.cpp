@@ -262,7 +262,6 @@ void runTune(TuneOptions options, const OutputOptions& output) {
         views[std::size_t(k)].camera = cameras[std::size_t(k)];
         views[std::size_t(k)].heldOut = heldOutFlags[std::size_t(k)];
     }
-    const int heldOut = holdout;
     prepareViews(options, prepared, views, output);
 
     const scheduler::FeatureMode mode = parseFeatureMode(options.features);
@@ -354,7 +353,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
         {"budget_ms", options.optimize.budgetMs},
         {"size", options.optimize.size},
         {"views", options.views},
-        {"held_out_views", heldOut},
+        {"held_out_views", holdout},
         {"path", options.path},
         {"algorithm", options.optimize.algorithm},
         {"optimizer_evals", options.optimize.maxEvaluations},
@@ -382,7 +381,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
         return;
     }
     std::cout << std::fixed << std::setprecision(4);
-    std::cout << prepared.scene.name << ": " << options.views << " views (" << heldOut << " held out), budget "
+    std::cout << prepared.scene.name << ": " << options.views << " views (" << holdout << " held out), budget "
               << options.optimize.budgetMs << " ms, optimizer " << options.optimize.algorithm << "\n";
     std::cout << "scheduler fitness / optimizer fitness      tuning   held-out\n";
     std::cout << "  published defaults (a1 0.6, a2 0.4)      " << defaultTuning << "   " << defaultHeldOut << "\n";

@@ -168,6 +168,8 @@ LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricPara
     : mSetup(setup), mParameters(parameters), mThreads(std::max(threads, 1)) {
     const int stateCount = std::max(states, mThreads);
     for (int t = 0; t < stateCount; ++t) mStates.push_back(std::make_unique<State>(setup, parameters, regions));
+    mAssigned.resize(mStates.size());
+    mBusy.reserve(mStates.size());
     for (int object : setup.variableObjects()) {
         std::vector<std::uint64_t> pixels;
         for (int level : setup.objects()[object].optionLevels) pixels.push_back(setup.layer(object, level).coveredPixels);
@@ -177,19 +179,24 @@ LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricPara
 
 LayerEvaluator::~LayerEvaluator() = default;
 
+const optimizer::Combination& LayerEvaluator::planned(std::size_t state,
+                                                      std::span<const optimizer::Combination> batch) const {
+    return mAssigned[state].empty() ? mStates[state]->current : batch[mAssigned[state].back()];
+}
+
 std::size_t LayerEvaluator::nearestState(const optimizer::Combination& combination,
-                                         const std::vector<std::size_t>& load, std::size_t cap) const {
+                                         std::span<const optimizer::Combination> batch, std::size_t cap) const {
     // Cost of a move: the pixels the changed objects' old and new layers cover, an upper bound
     // of what gets recomposited (re-scoring follows the pixels that really change).
     std::size_t best = mStates.size();
     std::uint64_t bestCost = 0;
     for (std::size_t s = 0; s < mStates.size(); ++s) {
-        if (load[s] >= cap) continue;
-        const optimizer::Combination& current = mPlanned[s];
+        if (mAssigned[s].size() >= cap) continue;
+        const optimizer::Combination& from = planned(s, batch);
         std::uint64_t cost = 0;
         for (std::size_t v = 0; v < combination.size() && (best == mStates.size() || cost < bestCost); ++v) {
-            if (combination[v] != current[v]) {
-                cost += mOptionPixels[v][std::size_t(current[v])] + mOptionPixels[v][std::size_t(combination[v])];
+            if (combination[v] != from[v]) {
+                cost += mOptionPixels[v][std::size_t(from[v])] + mOptionPixels[v][std::size_t(combination[v])];
             }
         }
         if (best == mStates.size() || cost < bestCost) {
@@ -201,12 +208,9 @@ std::size_t LayerEvaluator::nearestState(const optimizer::Combination& combinati
 }
 
 optimizer::Score LayerEvaluator::evaluate(const optimizer::Combination& combination) {
-    mPlanned.resize(mStates.size());
-    for (std::size_t s = 0; s < mStates.size(); ++s) mPlanned[s] = mStates[s]->current;
-    const std::vector<std::size_t> load(mStates.size(), 0);
-    State& state = *mStates[nearestState(combination, load, 1)];
-    state.moveTo(mSetup, combination);
-    return toScore(state.metrics.result());
+    optimizer::Score score;
+    evaluateBatch(std::span<const optimizer::Combination>(&combination, 1), std::span<optimizer::Score>(&score, 1));
+    return score;
 }
 
 void LayerEvaluator::evaluateBatch(std::span<const optimizer::Combination> combinations,
@@ -217,39 +221,33 @@ void LayerEvaluator::evaluateBatch(std::span<const optimizer::Combination> combi
     // not depend on the assignment (bit-exact metrics), only the time does.
     const std::size_t threads = std::min<std::size_t>(std::size_t(mThreads), combinations.size());
     const std::size_t cap = (combinations.size() + threads - 1) / threads;
-    mPlanned.resize(mStates.size());
-    for (std::size_t s = 0; s < mStates.size(); ++s) mPlanned[s] = mStates[s]->current;
-    std::vector<std::size_t> load(mStates.size(), 0);
-    std::vector<std::vector<std::size_t>> assigned(mStates.size());
     for (std::size_t k = 0; k < combinations.size(); ++k) {
-        const std::size_t s = nearestState(combinations[k], load, cap);
-        assigned[s].push_back(k);
-        ++load[s];
-        mPlanned[s] = combinations[k];
+        mAssigned[nearestState(combinations[k], combinations, cap)].push_back(k);
     }
     auto run = [&](std::size_t s) {
-        for (std::size_t k : assigned[s]) {
+        for (std::size_t k : mAssigned[s]) {
             mStates[s]->moveTo(mSetup, combinations[k]);
             scores[k] = toScore(mStates[s]->metrics.result());
         }
     };
-    std::vector<std::size_t> busy;
+    mBusy.clear();
     for (std::size_t s = 0; s < mStates.size(); ++s) {
-        if (!assigned[s].empty()) busy.push_back(s);
+        if (!mAssigned[s].empty()) mBusy.push_back(s);
     }
-    if (threads <= 1 || busy.size() <= 1) {
-        for (std::size_t s : busy) run(s);
-        return;
+    if (threads <= 1 || mBusy.size() <= 1) {
+        for (std::size_t s : mBusy) run(s);
+    } else {
+        // Thread t runs the busy states t, t + workers, ...; the caller's thread takes t = 0.
+        const std::size_t workers = std::min(threads, mBusy.size());
+        auto runShare = [&](std::size_t t) {
+            for (std::size_t i = t; i < mBusy.size(); i += workers) run(mBusy[i]);
+        };
+        std::vector<std::thread> pool;
+        for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(runShare, t);
+        runShare(0);
+        for (std::thread& worker : pool) worker.join();
     }
-    // Thread t runs the busy states t, t + threads, ...; the caller's thread takes t = 0.
-    const std::size_t workers = std::min(threads, busy.size());
-    auto runShare = [&](std::size_t t) {
-        for (std::size_t i = t; i < busy.size(); i += workers) run(busy[i]);
-    };
-    std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < workers; ++t) pool.emplace_back(runShare, t);
-    runShare(0);
-    for (std::thread& worker : pool) worker.join();
+    for (std::vector<std::size_t>& assigned : mAssigned) assigned.clear();  // capacity kept
 }
 
 metrics::MetricResult LayerEvaluator::metricsOf(const optimizer::Combination& combination) {

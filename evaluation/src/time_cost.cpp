@@ -13,8 +13,7 @@ double clampMs(double ms) { return std::isfinite(ms) ? std::max(ms, 0.0) : 0.0; 
 }  // namespace
 
 TimeModelCost::TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator)
-    : mSetup(setup),
-      mTable(setup.scene(), setup.camera(), setup.width(), setup.height()),
+    : mTable(setup.scene(), setup.camera(), setup.width(), setup.height()),
       mEstimator(std::move(estimator)) {
     const std::vector<int>& variables = setup.variableObjects();
     scenes::Combination fixedOnly = setup.toScene(optimizer::Combination(variables.size(), 0));

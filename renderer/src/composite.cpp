@@ -18,51 +18,17 @@ void clearColorBytes(glm::vec4 clearColor, std::uint8_t out[4]) {
 
 namespace {
 
-void clearRect(PixelRect rect, glm::vec4 clearColor, Frame& out) {
-    std::uint8_t clear[4];
-    clearColorBytes(clearColor, clear);
-    for (int y = rect.y0; y < rect.y1; ++y) {
-        std::uint8_t* color = &out.rgba[(std::size_t(y) * out.width + rect.x0) * 4];
-        float* depth = &out.depth[std::size_t(y) * out.width + rect.x0];
-        for (int x = rect.x0; x < rect.x1; ++x, color += 4, ++depth) {
-            std::copy(clear, clear + 4, color);
-            *depth = 1.0f;
-        }
-    }
-}
-
-// Layers in object order with a strict depth test: on equal depth the lower object index
-// stays, exactly as GL_LESS keeps the first-drawn object in a full render.
-void applyLayer(const Layer& layer, PixelRect rect, Frame& out) {
-    const int x0 = std::max(rect.x0, layer.rect.x0), x1 = std::min(rect.x1, layer.rect.x1);
-    const int y0 = std::max(rect.y0, layer.rect.y0), y1 = std::min(rect.y1, layer.rect.y1);
-    if (x0 >= x1 || y0 >= y1) return;
-    const int layerWidth = layer.rect.width();
-    const int count = x1 - x0;
-    for (int y = y0; y < y1; ++y) {
-        const std::size_t l = std::size_t(y - layer.rect.y0) * layerWidth + (x0 - layer.rect.x0);
-        const std::size_t f = std::size_t(y) * out.width + x0;
-        const float* layerDepth = &layer.depth[l];
-        float* frameDepth = &out.depth[f];
-        // Whole RGBA8 pixels as 32-bit words: a select per pixel that the compiler vectorizes.
-        std::uint32_t layerColor[512];
-        std::uint32_t frameColor[512];
-        for (int start = 0; start < count; start += 512) {
-            const int n = std::min(512, count - start);
-            std::memcpy(layerColor, &layer.rgba[(l + start) * 4], std::size_t(n) * 4);
-            std::memcpy(frameColor, &out.rgba[(f + start) * 4], std::size_t(n) * 4);
-            for (int x = 0; x < n; ++x) {
-                const bool nearer = layerDepth[start + x] < frameDepth[start + x];
-                frameDepth[start + x] = nearer ? layerDepth[start + x] : frameDepth[start + x];
-                frameColor[x] = nearer ? layerColor[x] : frameColor[x];
-            }
-            std::memcpy(&out.rgba[(f + start) * 4], frameColor, std::size_t(n) * 4);
-        }
-    }
-}
-
 PixelRect clippedToFrame(PixelRect rect, const Frame& out) {
     return {std::max(rect.x0, 0), std::max(rect.y0, 0), std::min(rect.x1, out.width), std::min(rect.y1, out.height)};
+}
+
+// The clear color as one RGBA8 word.
+std::uint32_t clearWord(glm::vec4 clearColor) {
+    std::uint8_t bytes[4];
+    clearColorBytes(clearColor, bytes);
+    std::uint32_t word;
+    std::memcpy(&word, bytes, 4);
+    return word;
 }
 
 // Pixels per row chunk: scratch rows live on the stack.
@@ -79,8 +45,10 @@ void layersReaching(const std::vector<const Layer*>& layers, PixelRect rect, std
     }
 }
 
-// Composites row y, columns [x0, x0 + n) with n <= kChunk, into `color` and `depth` with the
-// same per-pixel operations as clearRect + applyLayer, so the values are identical.
+// Composites row y, columns [x0, x0 + n) with n <= kChunk, into `color` and `depth`: the clear
+// color at depth 1, then the layers in object order with a strict depth test, so that on equal
+// depth the lower object index stays, exactly as GL_LESS keeps the first-drawn object in a
+// full render. Every composite goes through here, so all give the same values.
 void compositeRowChunk(const std::vector<const Layer*>& layers, int y, int x0, int n, std::uint32_t clear,
                        std::uint32_t* color, float* depth) {
     std::fill_n(color, n, clear);
@@ -156,9 +124,19 @@ void composite(const std::vector<const Layer*>& layers, int width, int height, g
 void compositeRect(const std::vector<const Layer*>& layers, PixelRect rect, glm::vec4 clearColor, Frame& out) {
     rect = clippedToFrame(rect, out);
     if (rect.empty()) return;
-    clearRect(rect, clearColor, out);
-    for (const Layer* layer : layers) {
-        if (layer && !layer->rect.empty()) applyLayer(*layer, rect, out);
+    std::vector<const Layer*> reaching;
+    layersReaching(layers, rect, reaching);
+    const std::uint32_t clear = clearWord(clearColor);
+    std::uint32_t color[kChunk];
+    float depth[kChunk];
+    for (int y = rect.y0; y < rect.y1; ++y) {
+        for (int x = rect.x0; x < rect.x1; x += kChunk) {
+            const int n = std::min(kChunk, rect.x1 - x);
+            compositeRowChunk(reaching, y, x, n, clear, color, depth);
+            const std::size_t at = std::size_t(y) * out.width + x;
+            std::memcpy(&out.rgba[at * 4], color, std::size_t(n) * 4);
+            std::memcpy(&out.depth[at], depth, std::size_t(n) * sizeof(float));
+        }
     }
 }
 
@@ -197,10 +175,7 @@ void compositeSpansChanges(const std::vector<const Layer*>& layers, int top, std
     if (hull.empty()) return;
     layersReaching(layers, hull, scratch.reaching);
     const std::vector<const Layer*>& reaching = scratch.reaching;
-    std::uint8_t clearBytes[4];
-    clearColorBytes(clearColor, clearBytes);
-    std::uint32_t clear;
-    std::memcpy(&clear, clearBytes, 4);
+    const std::uint32_t clear = clearWord(clearColor);
     std::uint32_t color[kChunk];
     float depth[kChunk];
     // appendColumnRuns clears every mark it reads, so the buffer is all zero between calls.

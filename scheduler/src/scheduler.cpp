@@ -272,6 +272,7 @@ void FrameScheduler::decideFlat() {
         if (hysteresis) ms = lowerToBudget(ms, LowerLimit::WithoutSwitch);
         lowerToBudget(ms, LowerLimit::Coarsest);
     }
+    sortByImportance(false);
     if (hysteresis) restorePreviousLevels();
     // Raise in decreasing importance, each object as far toward level 0 as the budget allows
     // (an object whose next step does not fit is passed over). After lowering this spends what
@@ -279,14 +280,12 @@ void FrameScheduler::decideFlat() {
     // back, more important ones may. Hysteresis: a raise that is a switch (the object was drawn
     // last frame) only within (1 − margin) of the budget.
     const double switchBudget = hysteresis ? budget * (1.0 - mParameters.switchControl.raiseMargin) : budget;
-    sortByImportance(false);
     for (int o : w.order) raiseWhileFits(o, 0, mPrevious[o] == scenes::kNotDrawn ? budget : switchBudget);
 }
 
 void FrameScheduler::restorePreviousLevels() {
     Work& w = *mWork;
     FrameDecision& d = mDecision;
-    sortByImportance(false);
     for (int o : w.order) {
         const int previous = mPrevious[o];
         if (previous == scenes::kNotDrawn || previous >= d.levels[o]) continue;

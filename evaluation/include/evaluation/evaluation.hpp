@@ -26,6 +26,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -101,9 +102,9 @@ private:
 };
 
 // What a search needs of the metrics: `parameters` without precision/recall. Those are
-// reported, never fused into the fitness, and cost about a tenth of the fast path's time
-// (perf, forest at 512²); an answer's full metrics come from a FullRenderEvaluator built with
-// the user's parameters.
+// reported, never fused into the fitness, and cost about a sixth of the fast path's time
+// (forest `dense` walk at 512²: 387 against 323 µs, evaluation_bench); an answer's full
+// metrics come from a FullRenderEvaluator built with the user's parameters.
 metrics::MetricParameters searchParameters(metrics::MetricParameters parameters);
 
 // Names of the score components the evaluators report, in Score::components order: the three
@@ -120,10 +121,11 @@ enum class DirtyRegions {
 };
 
 // The fast path. It keeps `states` >= `threads` evaluation states (each the last candidate it
-// evaluated: composite + incremental metrics, ~12 MB at 512²) and gives each candidate to the
-// state that needs the least recompositing (kStateChoice): a swarm revisits the neighbourhoods
-// of several particles, and a state left near one of them makes the next move there cheap.
-// A batch is spread over up to `threads` threads, each state used by one thread at a time.
+// evaluated: composite + incremental metrics, about 48 bytes per pixel, the metrics' ~40 of
+// incremental_evaluator.hpp and the frame's 8) and gives each candidate to the state that needs
+// the least recompositing (nearestState): a swarm revisits the neighbourhoods of several
+// particles, and a state left near one of them makes the next move there cheap. A batch is
+// spread over up to `threads` threads, each state used by one thread at a time.
 class LayerEvaluator final : public optimizer::Evaluator {
 public:
     static constexpr int kDefaultStates = 4;
@@ -145,17 +147,21 @@ public:
 
 private:
     struct State;
-    // Index of the state whose combination is cheapest to move to `combination`, among those
-    // with load[s] < cap (lowest index on ties).
-    std::size_t nearestState(const optimizer::Combination& combination, const std::vector<std::size_t>& load,
+    // The combination state `state` will hold once the candidates of `batch` assigned to it so
+    // far are evaluated (its current one when none is).
+    const optimizer::Combination& planned(std::size_t state, std::span<const optimizer::Combination> batch) const;
+    // Index of the state cheapest to move to `combination` among those with fewer than `cap`
+    // candidates assigned (lowest index on ties).
+    std::size_t nearestState(const optimizer::Combination& combination, std::span<const optimizer::Combination> batch,
                              std::size_t cap) const;
     const ViewSetup& mSetup;
     metrics::MetricParameters mParameters;
     int mThreads = 1;
     std::vector<std::unique_ptr<State>> mStates;
     std::vector<std::vector<std::uint64_t>> mOptionPixels;  // [variable][option] covered pixels
-    // Per state, the combination it will hold once the batch being assigned is evaluated.
-    std::vector<optimizer::Combination> mPlanned;
+    // evaluateBatch's working lists, empty between calls (kept to avoid allocating per batch):
+    std::vector<std::vector<std::size_t>> mAssigned;  // per state, its candidates in batch order
+    std::vector<std::size_t> mBusy;                   // states with candidates
 };
 
 // The full path: renders every candidate and scores it from scratch.

@@ -20,7 +20,8 @@ using FrameTimeEstimator = std::function<double(const timemodel::FrameFeatures&)
 
 class TimeModelCost final : public optimizer::Cost {
 public:
-    // `setup` must outlive the cost; `estimator` returns finite milliseconds >= 0.
+    // Reads `setup` here only (the table keeps its own contributions); `estimator` returns
+    // finite milliseconds >= 0.
     TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator);
 
     double predictMs(const optimizer::Combination& combination) const override;
@@ -32,7 +33,6 @@ public:
 private:
     timemodel::FrameFeatures featuresOf(const optimizer::Combination& combination) const;
 
-    const ViewSetup& mSetup;
     timemodel::FeatureTable mTable;
     FrameTimeEstimator mEstimator;
     timemodel::FrameFeatures mFixed;                             // frame constant + skipped objects

@@ -166,7 +166,8 @@ private:
     // Raises `object` one level at a time toward `finest` while the prediction fits `budgetMs`.
     void raiseWhileFits(int object, int finest, double budgetMs);
     // Hysteresis rule, before the free raise: objects drawn finer last frame get back to that
-    // level (all the way or not at all) in decreasing importance where the whole budget allows.
+    // level (all the way or not at all) in decreasing importance (Work::order, sorted by the
+    // caller) where the whole budget allows.
     void restorePreviousLevels();
     // Sorts the visible objects into Work::order by importance (ties by index).
     void sortByImportance(bool increasing);
