@@ -7,7 +7,8 @@
 // search scores (evaluation::searchParameters: no precision/recall).
 // Variants of the fast path in the same run: fast_path_all_metrics also computes precision/recall;
 // fast_path_bounds re-scores whole object rectangles (DirtyRegions::ObjectBounds), the earlier
-// fast path.
+// fast path; fast_path_no_parts is the fast path without the owned-window cache
+// (PartCaching::Off), as it was before that cache.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -27,6 +28,7 @@ struct Prepared {
     std::unique_ptr<evaluation::ViewSetup> setup;
     std::unique_ptr<evaluation::LayerEvaluator> fast;
     std::unique_ptr<evaluation::LayerEvaluator> fastBounds;
+    std::unique_ptr<evaluation::LayerEvaluator> fastNoParts;  // PartCaching::Off
     std::unique_ptr<evaluation::LayerEvaluator> fastAllMetrics;  // precision/recall too
     std::unique_ptr<evaluation::FullRenderEvaluator> full;
     std::vector<optimizer::Combination> candidates;  // a random walk: 1–3 objects change per step
@@ -59,6 +61,9 @@ Prepared& prepared(const std::string& key) {
     p.fast = std::make_unique<evaluation::LayerEvaluator>(*p.setup, parameters, 1);
     p.fastBounds = std::make_unique<evaluation::LayerEvaluator>(*p.setup, parameters, 1,
                                                                 evaluation::DirtyRegions::ObjectBounds);
+    p.fastNoParts = std::make_unique<evaluation::LayerEvaluator>(
+        *p.setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels, evaluation::LayerEvaluator::kDefaultStates,
+        evaluation::PartCaching::Off);
     p.fastAllMetrics = std::make_unique<evaluation::LayerEvaluator>(*p.setup, metrics::MetricParameters{}, 1);
     p.full = std::make_unique<evaluation::FullRenderEvaluator>(*p.setup, *p.renderer, parameters);
     const std::vector<int> counts = p.setup->levelCounts();
@@ -84,6 +89,13 @@ void evaluatePath(benchmark::State& state, const Prepared& p, evaluation::LayerE
     benchmark::DoNotOptimize(sink);
     state.SetItemsProcessed(state.iterations());
     state.counters["searched_objects"] = double(p.setup->skipSummary().searchedObjects);
+    const metrics::PartCacheStats parts = evaluator.partCacheStats();
+    if (parts.parts > 0) {
+        // Share of the SSIM windows some searched object reaches that are owned by one object.
+        const double reached = double(parts.ownedSsimWindows + parts.liveSsimWindows);
+        state.counters["owned_share"] = reached > 0 ? double(parts.ownedSsimWindows) / reached : 0.0;
+        state.counters["cache_MB"] = double(parts.bytes) / 1e6;
+    }
 }
 
 void fastPath(benchmark::State& state, const std::string& sceneName) {
@@ -94,6 +106,11 @@ void fastPath(benchmark::State& state, const std::string& sceneName) {
 void fastPathBounds(benchmark::State& state, const std::string& sceneName) {
     Prepared& p = prepared(sceneName);
     evaluatePath(state, p, *p.fastBounds);
+}
+
+void fastPathNoParts(benchmark::State& state, const std::string& sceneName) {
+    Prepared& p = prepared(sceneName);
+    evaluatePath(state, p, *p.fastNoParts);
 }
 
 void fastPathAllMetrics(benchmark::State& state, const std::string& sceneName) {
@@ -134,6 +151,7 @@ int main(int argc, char** argv) {
         using Path = void (*)(benchmark::State&, const std::string&);
         const std::pair<const char*, Path> paths[] = {{"fast_path/", fastPath},
                                                       {"fast_path_bounds/", fastPathBounds},
+                                                      {"fast_path_no_parts/", fastPathNoParts},
                                                       {"fast_path_all_metrics/", fastPathAllMetrics},
                                                       {"full_path/", fullPath}};
         for (const auto& [prefix, path] : paths) {

@@ -69,14 +69,23 @@ struct LayerEvaluator::State {
     int dirtyTop = 0, dirtyBottom = 0;
     std::vector<renderer::PixelRect> changed;  // tight rectangles of the changed pixels
     renderer::CompositeScratch compositeScratch;
+    std::vector<metrics::PartMove> moves;        // with parts: the variables that moved
+    std::vector<metrics::UpdateRect> updateRects;
 
-    State(const ViewSetup& setup, const metrics::MetricParameters& parameters, DirtyRegions regions)
+    State(const ViewSetup& setup, const metrics::MetricParameters& parameters, DirtyRegions regions,
+          const std::shared_ptr<metrics::PartCache>& parts)
         : regions(regions), metrics(viewOf(setup.reference()), parameters) {
         current.assign(setup.variableObjects().size(), 0);
         const scenes::Combination levels = setup.toScene(current);
         for (std::size_t o = 0; o < levels.size(); ++o) layers.push_back(&setup.layer(int(o), levels[o]));
         renderer::composite(layers, setup.width(), setup.height(), setup.clearColor(), frame);
-        metrics.setCandidate(viewOf(frame));
+        if (parts) {
+            metrics.setParts(parts, viewOf(frame), current);
+        } else {
+            metrics.setCandidate(viewOf(frame));
+        }
+        moves.reserve(current.size());
+        updateRects.reserve(64);
         // ObjectBounds keeps the earlier threshold too: plain area, no window or call cost.
         if (regions == DirtyRegions::ObjectBounds) {
             costModel = {0, 0};
@@ -94,6 +103,7 @@ struct LayerEvaluator::State {
         }
         dirtyTop = frame.height;
         dirtyBottom = 0;
+        moves.clear();
         const std::vector<int>& objects = setup.variableObjects();
         for (std::size_t v = 0; v < combination.size(); ++v) {
             if (combination[v] == current[v]) continue;
@@ -103,13 +113,28 @@ struct LayerEvaluator::State {
             layers[object] = &setup.layer(object, levels[combination[v]]);
             markDirty(*layers[object], setup.coverage(object, levels[combination[v]]));
             current[v] = combination[v];
+            moves.push_back({int(v), combination[v]});
         }
-        if (dirtyTop >= dirtyBottom) return;
         changed.clear();
-        const std::span<renderer::RowSpan> rows(dirtyRows.data() + dirtyTop, std::size_t(dirtyBottom - dirtyTop));
-        renderer::compositeSpansChanges(layers, dirtyTop, rows, setup.clearColor(), kChangeGrid, frame, changed,
-                                        compositeScratch);
-        std::fill(rows.begin(), rows.end(), renderer::RowSpan{});
+        if (dirtyTop < dirtyBottom) {
+            const std::span<renderer::RowSpan> rows(dirtyRows.data() + dirtyTop, std::size_t(dirtyBottom - dirtyTop));
+            renderer::compositeSpansChanges(layers, dirtyTop, rows, setup.clearColor(), kChangeGrid, frame, changed,
+                                            compositeScratch);
+            std::fill(rows.begin(), rows.end(), renderer::RowSpan{});
+        }
+        if (metrics.hasParts()) {
+            // The moved parts' owned windows come from the cache even when no pixel changed.
+            if (moves.empty()) return;
+            detail::mergeCheaper(changed, costModel);
+            updateRects.clear();
+            if (2 * updateCost(changed, costModel) > std::uint64_t(frame.width) * frame.height) {
+                updateRects.push_back({0, 0, frame.width, frame.height});
+            } else {
+                for (const renderer::PixelRect& r : changed) updateRects.push_back({r.x0, r.y0, r.x1, r.y1});
+            }
+            metrics.update(viewOf(frame), updateRects, moves);
+            return;
+        }
         if (changed.empty()) return;  // the composite is pixel-identical: the scores stand
         detail::mergeCheaper(changed, costModel);
         score(changed);
@@ -163,11 +188,49 @@ private:
     }
 };
 
+namespace {
+
+// Per pixel, the one variable whose option layers cover it, kSharedPixel where several do and
+// kConstantPixel where none does (skipped objects never change).
+std::vector<std::int32_t> pixelParts(const ViewSetup& setup) {
+    const int width = setup.width(), height = setup.height();
+    std::vector<std::int32_t> parts(std::size_t(width) * height, metrics::kConstantPixel);
+    const std::vector<int>& objects = setup.variableObjects();
+    for (std::size_t v = 0; v < objects.size(); ++v) {
+        for (int level : setup.objects()[objects[v]].optionLevels) {
+            const renderer::Layer& layer = setup.layer(objects[v], level);
+            const renderer::PixelRect& r = layer.rect;
+            for (int y = std::max(r.y0, 0); y < std::min(r.y1, height); ++y) {
+                const float* depth = layer.depth.data() + std::size_t(y - r.y0) * r.width();
+                std::int32_t* row = parts.data() + std::size_t(y) * width;
+                for (int x = std::max(r.x0, 0); x < std::min(r.x1, width); ++x) {
+                    if (!(depth[x - r.x0] < 1.0f)) continue;
+                    std::int32_t& owner = row[x];
+                    if (owner == metrics::kConstantPixel) {
+                        owner = std::int32_t(v);
+                    } else if (owner != std::int32_t(v)) {
+                        owner = metrics::kSharedPixel;
+                    }
+                }
+            }
+        }
+    }
+    return parts;
+}
+
+}  // namespace
+
 LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads,
-                               DirtyRegions regions, int states)
+                               DirtyRegions regions, int states, PartCaching caching)
     : mSetup(setup), mParameters(parameters), mThreads(std::max(threads, 1)) {
+    if (caching == PartCaching::On && regions == DirtyRegions::ChangedPixels && !setup.variableObjects().empty()) {
+        const std::vector<int> counts = setup.levelCounts();
+        mPartCache = metrics::makePartCache(setup.width(), setup.height(), parameters, pixelParts(setup), counts);
+    }
     const int stateCount = std::max(states, mThreads);
-    for (int t = 0; t < stateCount; ++t) mStates.push_back(std::make_unique<State>(setup, parameters, regions));
+    for (int t = 0; t < stateCount; ++t) {
+        mStates.push_back(std::make_unique<State>(setup, parameters, regions, mPartCache));
+    }
     mAssigned.resize(mStates.size());
     mBusy.reserve(mStates.size());
     for (int object : setup.variableObjects()) {
@@ -258,6 +321,10 @@ metrics::MetricResult LayerEvaluator::metricsOf(const optimizer::Combination& co
 renderer::Frame LayerEvaluator::imageOf(const optimizer::Combination& combination) {
     mStates[0]->moveTo(mSetup, combination);
     return mStates[0]->frame;
+}
+
+metrics::PartCacheStats LayerEvaluator::partCacheStats() const {
+    return mPartCache ? metrics::partCacheStats(*mPartCache) : metrics::PartCacheStats{};
 }
 
 FullRenderEvaluator::FullRenderEvaluator(const ViewSetup& setup, renderer::Renderer& renderer,

@@ -56,11 +56,9 @@ ViewSetup::ViewSetup(const scenes::Scene& scene, const scenes::Camera& camera, r
     const std::size_t pixels = std::size_t(width) * height;
 
     mLayers.resize(scene.objects.size());
-    mCoverage.resize(scene.objects.size());
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         for (std::size_t l = 0; l < scene.objects[o].levels.size(); ++l) {
             mLayers[o].push_back(renderer.renderLayer(int(o), int(l), camera));
-            mCoverage[o].push_back(renderer::coveredRowSpans(mLayers[o].back()));
         }
     }
 

@@ -28,6 +28,10 @@
 #define LODOPT_METRICS_INLINE inline
 #endif
 
+namespace lodopt::metrics {
+class PartCache;
+}
+
 namespace lodopt::metrics::detail {
 
 // --- Images and gray ----------------------------------------------------------------------
@@ -98,6 +102,8 @@ constexpr int kSsimBlockRows = 64;
 constexpr int kSsimBlockColumns = 128;
 // Windows are compared with the reference in cells of kSsimBlockRows x kSsimCellColumns.
 constexpr int kSsimCellColumns = 64;
+// Row bands of the live-window pass (parts): shorter, to skip more (measured, docs/optimizer.md).
+constexpr int kSsimLiveBandRows = 16;
 constexpr int kSsimMaxWindow = 63;
 
 // Everything the per-window computation needs; constants are in scaled gray units.
@@ -129,10 +135,12 @@ void ssimReferenceStatistics(const std::int32_t* grayY, std::size_t grayStride, 
 // SSIM of windows [mx0, mx1) x [my0, my1) of gray `grayX` against `grayY`, whose statistics
 // `mean`/`variance` (as above, pointing at (mx0, my0)) were computed by
 // ssimReferenceStatistics. `map` points at (mx0, my0), rows `mapStride` apart.
+// With `liveOnly`, only windows that read several of its parts are computed (the others keep
+// their map values: the caller sets owned windows from the cache).
 void ssimWindows(const std::int32_t* grayX, const std::int32_t* grayY, std::size_t grayStride,
                  const SsimKernel& kernel, int mx0, int my0, int mx1, int my1, const double* mean,
                  const double* variance, std::size_t statStride, SsimScratch& scratch, double* map,
-                 std::size_t mapStride);
+                 std::size_t mapStride, const PartCache* liveOnly = nullptr);
 
 // --- Entropies ----------------------------------------------------------------------------
 

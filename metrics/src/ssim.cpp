@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "kernels.hpp"
+#include "parts.hpp"
 
 namespace lodopt::metrics {
 namespace detail {
@@ -238,33 +239,83 @@ bool inputsEqual(const std::int32_t* grayX, const std::int32_t* grayY, std::size
     return true;
 }
 
+// The smallest sub-block of `block` holding all its live windows (it holds at least one):
+// the horizontal pass then covers only those rows and columns.
+Block trimToLive(const PartCache& live, Block block) {
+    int x0 = block.bx, x1 = block.bx + block.columns, y0 = block.by, y1 = block.by + block.rows;
+    // Binary searches on the summed-area table: the first row (column) with a live window, the
+    // last one.
+    auto firstRow = [&] {
+        int lo = y0, hi = y1 - 1;  // the answer is in [lo, hi]
+        while (lo < hi) {
+            const int mid = (lo + hi) / 2;
+            if (live.liveWindows(x0, y0, x1, mid + 1) > 0) hi = mid; else lo = mid + 1;
+        }
+        return lo;
+    };
+    y0 = firstRow();
+    {
+        int lo = y0, hi = y1 - 1;  // last row: largest r with live windows in [r, y1)
+        while (lo < hi) {
+            const int mid = (lo + hi + 1) / 2;
+            if (live.liveWindows(x0, mid, x1, y1) > 0) lo = mid; else hi = mid - 1;
+        }
+        y1 = lo + 1;
+    }
+    {
+        int lo = x0, hi = x1 - 1;
+        while (lo < hi) {
+            const int mid = (lo + hi) / 2;
+            if (live.liveWindows(x0, y0, mid + 1, y1) > 0) hi = mid; else lo = mid + 1;
+        }
+        x0 = lo;
+    }
+    {
+        int lo = x0, hi = x1 - 1;
+        while (lo < hi) {
+            const int mid = (lo + hi + 1) / 2;
+            if (live.liveWindows(mid, y0, x1, y1) > 0) lo = mid; else hi = mid - 1;
+        }
+        x1 = lo + 1;
+    }
+    return {x0, y0, x1 - x0, y1 - y0};
+}
+
 }  // namespace
 
 void ssimWindows(const std::int32_t* grayX, const std::int32_t* grayY, std::size_t grayStride,
                  const SsimKernel& kernel, int mx0, int my0, int mx1, int my1, const double* mean,
                  const double* variance, std::size_t statStride, SsimScratch& scratch, double* map,
-                 std::size_t mapStride) {
+                 std::size_t mapStride, const PartCache* liveOnly) {
     assert(mx0 >= 0 && my0 >= 0 && mx1 <= kernel.mapWidth && my1 <= kernel.mapHeight);
     // Windows whose inputs equal the reference's are exactly 1 without computing them: their
     // sums are the reference's bit for bit (same code, same inputs; x y = x x), so the
     // numerator equals the denominator. Renders share most of their background with the
     // reference, so cells of kSsimCellColumns windows are tested and the differing ones are
     // computed in runs of up to kSsimBlockColumns.
-    for (int by = my0; by < my1; by += kSsimBlockRows) {
-        const int rows = std::min(kSsimBlockRows, my1 - by);
-        const std::size_t stat = std::size_t(by - my0) * statStride;
+    // With parts, bands of fewer rows: a band without a window reading two parts is skipped
+    // whole, and those windows lie in thin seams between objects.
+    const int bandRows = liveOnly ? kSsimLiveBandRows : kSsimBlockRows;
+    for (int by = my0; by < my1; by += bandRows) {
+        const int rows = std::min(bandRows, my1 - by);
         const std::size_t out = std::size_t(by - my0) * mapStride;
         int runStart = mx0, runEnd = mx0;  // pending differing cells [runStart, runEnd)
         auto flush = [&] {
-            if (runEnd > runStart) {
-                const Block block{runStart, by, runEnd - runStart, rows};
-                const std::size_t column = std::size_t(runStart - mx0);
-                candidateBlock(kernel, scratch, grayX, grayY, grayStride, block, mean + stat + column,
-                               variance + stat + column, statStride, map + out + column, mapStride);
-            }
+            if (runEnd <= runStart) return;
+            Block block{runStart, by, runEnd - runStart, rows};
+            if (liveOnly) block = trimToLive(*liveOnly, block);
+            const std::size_t at = std::size_t(block.by - my0) * statStride + std::size_t(block.bx - mx0);
+            const std::size_t mapAt = std::size_t(block.by - my0) * mapStride + std::size_t(block.bx - mx0);
+            candidateBlock(kernel, scratch, grayX, grayY, grayStride, block, mean + at, variance + at, statStride,
+                           map + mapAt, mapStride);
         };
         for (int cx = mx0; cx < mx1; cx += kSsimCellColumns) {
             const int columns = std::min(kSsimCellColumns, mx1 - cx);
+            if (liveOnly && liveOnly->liveWindows(cx, by, cx + columns, by + rows) == 0) {
+                flush();  // nothing here reads two parts: owned windows come from the cache
+                runStart = runEnd = cx + columns;
+                continue;
+            }
             if (inputsEqual(grayX, grayY, grayStride, kernel, cx, by, columns, rows)) {
                 flush();
                 runStart = runEnd = cx + columns;

@@ -56,7 +56,13 @@ void compositeRowChunk(const std::vector<const Layer*>& layers, int y, int x0, i
     for (const Layer* layer : layers) {
         const PixelRect& r = layer->rect;
         if (y < r.y0 || y >= r.y1) continue;
-        const int a = std::max(x0, r.x0), b = std::min(x0 + n, r.x1);
+        int a = std::max(x0, r.x0), b = std::min(x0 + n, r.x1);
+        if (!layer->rowSpans.empty()) {
+            // Uncovered pixels (depth 1) never win the depth test: only the covered span.
+            const RowSpan& span = layer->rowSpans[std::size_t(y - r.y0)];
+            a = std::max(a, span.x0);
+            b = std::min(b, span.x1);
+        }
         if (a >= b) continue;
         const std::size_t l = std::size_t(y - r.y0) * r.width() + (a - r.x0);
         // A mask instead of a branch, and __restrict (the layer and the scratch row never

@@ -392,6 +392,7 @@ Layer Renderer::renderLayer(int object, int level, const scenes::Camera& camera)
         std::memcpy(&layer.rgba[std::size_t(y) * w * 4], &frame.rgba[source * 4], std::size_t(w) * 4);
         std::memcpy(&layer.depth[std::size_t(y) * w], &frame.depth[source], std::size_t(w) * sizeof(float));
     }
+    layer.rowSpans = coveredRowSpans(layer);
     return layer;
 }
 

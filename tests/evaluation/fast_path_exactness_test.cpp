@@ -98,3 +98,42 @@ TEST(FastPathExactness, ThreadedBatchesMatchTheSerialWalk) {
     threaded.evaluateBatch(walk, batch);
     for (std::size_t k = 0; k < walk.size(); ++k) expectSameScore(serial.evaluate(walk[k]), batch[k], "step " + std::to_string(k));
 }
+
+TEST(FastPathExactness, OwnedWindowCacheChangesNoBitOnEveryHarborViewAndTheSparseForest) {
+    // The owned-window cache (PartCaching::On, the default) against the fast path without it
+    // and against from-scratch scores, on views where most windows are owned by one object.
+    renderer::RenderSettings settings;
+    settings.width = settings.height = 128;
+    metrics::MetricParameters parameters;
+    for (const char* sceneName : {"harbor", "forest"}) {
+        scenes::Scene scene = scenes::loadScene(sceneName);
+        renderer::Renderer renderer(scene, settings);
+        for (const scenes::Camera& camera : scene.views) {
+            if (std::string(sceneName) == "forest" && camera.name != "sparse") continue;
+            evaluation::ViewSetup setup(scene, camera, renderer);
+            const std::vector<int> counts = setup.levelCounts();
+            ASSERT_GE(counts.size(), 2u) << camera.name;
+            evaluation::LayerEvaluator cached(setup, parameters);
+            evaluation::LayerEvaluator uncached(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
+                                                evaluation::LayerEvaluator::kDefaultStates,
+                                                evaluation::PartCaching::Off);
+            const std::vector<optimizer::Combination> walk = randomWalk(counts, 60, 8);
+            for (std::size_t k = 0; k < walk.size(); ++k) {
+                const std::string what = std::string(sceneName) + "/" + camera.name + " step " + std::to_string(k);
+                const optimizer::Score score = cached.evaluate(walk[k]);
+                expectSameScore(score, uncached.evaluate(walk[k]), what + " vs without the cache");
+                if (k % 6 == 0) {
+                    const renderer::Frame expected = freshComposite(setup, walk[k]);
+                    expectSameScore(score,
+                                    evaluation::toScore(metrics::evaluate(viewOf(expected), viewOf(setup.reference()), parameters)),
+                                    what + " vs from scratch");
+                }
+            }
+            const metrics::PartCacheStats stats = cached.partCacheStats();
+            EXPECT_EQ(stats.parts, int(counts.size())) << camera.name;
+            EXPECT_GT(stats.ownedSsimWindows, 0u) << camera.name;
+            EXPECT_GT(stats.filledEntries, std::uint64_t(counts.size())) << camera.name;
+            EXPECT_EQ(uncached.partCacheStats().parts, 0) << camera.name;
+        }
+    }
+}

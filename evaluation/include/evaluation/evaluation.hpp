@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "metrics/incremental_evaluator.hpp"
 #include "metrics/metrics.hpp"
 #include "optimizer/problem.hpp"
 #include "renderer/renderer.hpp"
@@ -84,7 +85,9 @@ public:
     // The layer of object `object` at scene level `level`.
     const renderer::Layer& layer(int object, int level) const { return mLayers[object][level]; }
     // Its covered columns per row of layer(object, level).rect (renderer::coveredRowSpans).
-    const std::vector<renderer::RowSpan>& coverage(int object, int level) const { return mCoverage[object][level]; }
+    const std::vector<renderer::RowSpan>& coverage(int object, int level) const {
+        return mLayers[object][level].rowSpans;
+    }
 
     double setupSeconds() const { return mSetupSeconds; }
 
@@ -94,7 +97,6 @@ private:
     glm::vec4 mClearColor;
     renderer::Frame mReference;
     std::vector<std::vector<renderer::Layer>> mLayers;  // [object][level]
-    std::vector<std::vector<std::vector<renderer::RowSpan>>> mCoverage;  // [object][level][row]
     std::vector<ObjectSetup> mObjects;
     std::vector<int> mVariableObjects;
     SkipSummary mSkip;
@@ -126,11 +128,22 @@ enum class DirtyRegions {
 // the least recompositing (nearestState): a swarm revisits the neighbourhoods of several
 // particles, and a state left near one of them makes the next move there cheap. A batch is
 // spread over up to `threads` threads, each state used by one thread at a time.
+//
+// Owned windows (PartCaching::On, the default with ChangedPixels): each searched object is a
+// part of the image (metrics::PartCache). A pixel that only one object's levels ever cover
+// depends on that object's level alone, and so does every metric window made only of such
+// pixels (and of pixels no searched object covers). Those windows are scored once per (object,
+// level), shared by all states, and copied in when the object moves to that level; only windows
+// where two searched objects' levels meet are computed per candidate. Scores are unchanged, bit
+// for bit.
+enum class PartCaching { On, Off };
+
 class LayerEvaluator final : public optimizer::Evaluator {
 public:
     static constexpr int kDefaultStates = 4;
     LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads = 1,
-                   DirtyRegions regions = DirtyRegions::ChangedPixels, int states = kDefaultStates);
+                   DirtyRegions regions = DirtyRegions::ChangedPixels, int states = kDefaultStates,
+                   PartCaching caching = PartCaching::On);
     ~LayerEvaluator() override;
 
     optimizer::Score evaluate(const optimizer::Combination& combination) override;
@@ -144,6 +157,8 @@ public:
     metrics::MetricResult metricsOf(const optimizer::Combination& combination);
     // The composited image of a combination.
     renderer::Frame imageOf(const optimizer::Combination& combination);
+    // The owned-window cache's figures (zeros without one).
+    metrics::PartCacheStats partCacheStats() const;
 
 private:
     struct State;
@@ -159,6 +174,7 @@ private:
     int mThreads = 1;
     std::vector<std::unique_ptr<State>> mStates;
     std::vector<std::vector<std::uint64_t>> mOptionPixels;  // [variable][option] covered pixels
+    std::shared_ptr<metrics::PartCache> mPartCache;  // null without PartCaching::On
     // evaluateBatch's working lists, empty between calls (kept to avoid allocating per batch):
     std::vector<std::vector<std::size_t>> mAssigned;  // per state, its candidates in batch order
     std::vector<std::size_t> mBusy;                   // states with candidates

@@ -55,6 +55,12 @@ struct PixelRect {
     int height() const { return empty() ? 0 : y1 - y0; }
 };
 
+// One row's columns [x0, x1); empty when x0 >= x1.
+struct RowSpan {
+    int x0 = 0, x1 = 0;
+    bool empty() const { return x0 >= x1; }
+};
+
 // One object at one level rendered alone, cropped to the pixels it covers.
 struct Layer {
     int object = -1;
@@ -63,6 +69,10 @@ struct Layer {
     std::vector<std::uint8_t> rgba;  // rect.width() * rect.height() * 4
     std::vector<float> depth;        // rect.width() * rect.height(), 1 = not covered
     std::uint64_t coveredPixels = 0;
+    // Per row of `rect`, the columns from the first to the last covered pixel (frame
+    // coordinates; coveredRowSpans). Compositing skips the rest of the row. Empty: not known,
+    // whole rows are composited (the same result, slower).
+    std::vector<RowSpan> rowSpans;
 };
 
 // Backend behind the Renderer (Filament-style): creates and makes current a GL context.
@@ -113,11 +123,6 @@ private:
 void composite(const std::vector<const Layer*>& layers, int width, int height, glm::vec4 clearColor, Frame& out);
 // Recomposites only `rect` of `out` (which already holds a composite of the same size).
 void compositeRect(const std::vector<const Layer*>& layers, PixelRect rect, glm::vec4 clearColor, Frame& out);
-// One row's columns [x0, x1); empty when x0 >= x1.
-struct RowSpan {
-    int x0 = 0, x1 = 0;
-    bool empty() const { return x0 >= x1; }
-};
 // Per row of `layer.rect`, top to bottom, the columns from its first to its last covered
 // pixel (depth < 1), in frame coordinates: where a level change of that layer can act.
 std::vector<RowSpan> coveredRowSpans(const Layer& layer);
