@@ -165,6 +165,24 @@ optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions
     return result;
 }
 
+namespace {
+
+// The fast path's owned-window cache after the search (null for the full path): how many SSIM
+// windows one searched object owns (scored once per level) and how many read several (scored
+// per candidate), the (object, level) entries filled and their memory.
+nlohmann::json ownedWindowsJson(const optimizer::Evaluator* evaluator) {
+    const auto* layers = dynamic_cast<const evaluation::LayerEvaluator*>(evaluator);
+    if (!layers) return nullptr;
+    const metrics::PartCacheStats stats = layers->partCacheStats();
+    return {{"owned_ssim_windows", stats.ownedSsimWindows},
+            {"live_ssim_windows", stats.liveSsimWindows},
+            {"entries_filled", stats.filledEntries},
+            {"entries", stats.entries},
+            {"bytes", stats.bytes}};
+}
+
+}  // namespace
+
 ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& options,
                      const std::string& algorithm, std::uint64_t seed) {
     const auto start = std::chrono::steady_clock::now();
@@ -238,6 +256,7 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
           {"merged_levels", skip.mergedLevels},
           {"searched_objects", skip.searchedObjects},
           {"objects", skipped}}},
+        {"owned_windows", ownedWindowsJson(context.evaluator.get())},
         {"setup_seconds", setupSeconds},
         {"evals_per_second", searchSeconds > 0.0 ? double(result.evaluations) / searchSeconds : 0.0},
         {"search_seconds", searchSeconds},

@@ -63,7 +63,8 @@ struct IncrementalEvaluator::State {
     std::vector<std::int64_t> denseHistogram;   // filling an entry's histograms
 
     void checkCandidate(const ImageView& candidate) const;
-    void fillEntry(int part, int state, PartCache::Entry& entry);
+    // Fills `entry` from the current image, which shows `part` in the entry's state.
+    void fillEntry(int part, PartCache::Entry& entry);
     void applyEntry(const PartCache::Entry& entry, std::int64_t sign);
     // Map windows whose inputs lie in pixel rectangle `r` (clipped to the map).
     UpdateRect ssimReach(const UpdateRect& r) const;
@@ -71,7 +72,6 @@ struct IncrementalEvaluator::State {
     void copyOwnedSsim(int part, const PartCache::Entry& entry, const UpdateRect& region);
     void update(const ImageView& candidate, int x0, int y0, int x1, int y1);
     void updatePixels(const ImageView& candidate, int x0, int y0, int x1, int y1, bool replace);
-
     void updateBoundary(int x0, int y0, int x1, int y1, bool replace);
     void updateSsim(int x0, int y0, int x1, int y1);
 };
@@ -181,7 +181,7 @@ void IncrementalEvaluator::setParts(std::shared_ptr<PartCache> cache, const Imag
     s.denseHistogram.assign(std::size_t(s.parts->sobelOn ? std::max(s.sobel.bins, 256) : 256), 0);
     for (int k = 0; k < int(s.partStates.size()); ++k) {
         PartCache::Entry& entry = s.parts->entry(k, s.partStates[std::size_t(k)]);
-        std::call_once(entry.once, [&] { s.fillEntry(k, s.partStates[std::size_t(k)], entry); });
+        std::call_once(entry.once, [&] { s.fillEntry(k, entry); });
     }
 }
 
@@ -224,7 +224,7 @@ void IncrementalEvaluator::update(const ImageView& candidate, std::span<const Up
         if (later || current == move.state) continue;
         PartCache::Entry& before = c.entry(move.part, current);
         PartCache::Entry& after = c.entry(move.part, move.state);
-        std::call_once(after.once, [&] { s.fillEntry(move.part, move.state, after); });
+        std::call_once(after.once, [&] { s.fillEntry(move.part, after); });
         s.applyEntry(before, -1);
         s.applyEntry(after, 1);
         if (s.ssimOn) {
@@ -416,8 +416,7 @@ void IncrementalEvaluator::State::updateSsim(int x0, int y0, int x1, int y1) {
     ssimMap.refresh(mx0, my0, mx1, my1);
 }
 
-void IncrementalEvaluator::State::fillEntry(int part, int state, PartCache::Entry& entry) {
-    (void)state;  // the current image is the part in `state` (the caller's promise)
+void IncrementalEvaluator::State::fillEntry(int part, PartCache::Entry& entry) {
     const PartCache::Part& owned = parts->parts[std::size_t(part)];
     if (parts->ssimOn && owned.ssimWindows > 0) {
         // Every window of the bounding rectangle from the current gray (correct values for all

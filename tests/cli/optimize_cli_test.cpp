@@ -68,6 +68,13 @@ TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
     EXPECT_EQ(result["levels"].size(), 3u);
     EXPECT_TRUE(result["levels"].contains("ship"));
     EXPECT_GT(result["evaluations"].get<int>(), 0);
+    // The fast path's owned-window cache: ship_close has three searched objects, each owning
+    // windows, and the search filled some (object, level) entries.
+    const nlohmann::json& owned = result["owned_windows"];
+    ASSERT_TRUE(owned.is_object()) << owned.dump();
+    EXPECT_GT(owned["owned_ssim_windows"].get<std::int64_t>(), 0);
+    EXPECT_GE(owned["entries_filled"].get<std::int64_t>(), 3);
+    EXPECT_LE(owned["entries_filled"].get<std::int64_t>(), owned["entries"].get<std::int64_t>());
     EXPECT_TRUE(std::filesystem::exists(out / "curve.csv"));
     EXPECT_TRUE(std::filesystem::exists(out / "optimized.png"));
     EXPECT_TRUE(std::filesystem::exists(out / "reference.png"));
@@ -118,6 +125,7 @@ TEST_F(OptimizeCli, FullEvaluationPathAgreesWithTheFastPath) {
     ASSERT_EQ(full.exitCode, 0);
     nlohmann::json a = nlohmann::json::parse(fast.output), b = nlohmann::json::parse(full.output);
     EXPECT_EQ(a["combination"], b["combination"]);
+    EXPECT_TRUE(b["owned_windows"].is_null());  // no layers, no cache
     EXPECT_NEAR(a["search_fitness"].get<double>(), b["search_fitness"].get<double>(), 1e-3);
 }
 
