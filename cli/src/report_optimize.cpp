@@ -159,6 +159,16 @@ void addFacts(ReportContext& context, const nlohmann::json& result, const Baseli
         {"evaluation path, evaluations/s",
          jsonText(result, "eval_path", "–") + ", " + fixed(jsonNumber(result, "evals_per_second", NAN), 0)},
     };
+    if (result.contains("owned_windows") && result["owned_windows"].is_object()) {
+        // The fast path's cache: how much of the SSIM work one object's level alone decides.
+        const nlohmann::json& owned = result["owned_windows"];
+        const double ownedWindows = jsonNumber(owned, "owned_ssim_windows", NAN);
+        const double reached = ownedWindows + jsonNumber(owned, "live_ssim_windows", NAN);
+        rows.push_back({"owned SSIM windows (share), cache entries filled",
+                        jsonText(owned, "owned_ssim_windows", "–") + " (" +
+                            fixed(reached > 0 ? 100.0 * ownedWindows / reached : NAN, 1) + " %), " +
+                            jsonText(owned, "entries_filled", "–") + " of " + jsonText(owned, "entries", "–")});
+    }
     if (baseline.image.width > 0) {
         rows.push_back({"baseline " + baselineName + ": fitness, predicted ms",
                         fixed(baseline.fitness, 4) + ", " + fixed(baseline.predictedMs, 2)});
