@@ -49,7 +49,7 @@ std::vector<std::int32_t> windowOwners(std::span<const std::int32_t> pixels, int
 
 // Appends each row's runs of equal owners >= 0 to their part's list; (offsetX, offsetY) moves
 // grid coordinates to the run coordinates.
-void collectRuns(const std::vector<std::int32_t>& owners, int width, int height, int offsetX, int offsetY,
+void collectRuns(std::span<const std::int32_t> owners, int width, int height, int offsetX, int offsetY,
                  std::vector<PartCache::Part>& parts, std::vector<PartCache::Run> PartCache::Part::*runs) {
     for (int y = 0; y < height; ++y) {
         const std::int32_t* row = owners.data() + std::size_t(y) * width;
@@ -141,8 +141,7 @@ std::shared_ptr<PartCache> makePartCache(int width, int height, const MetricPara
         }
     }
     if (c.grayOn) {
-        collectRuns(std::vector<std::int32_t>(pixelParts.begin(), pixelParts.end()), width, height, 0, 0, c.parts,
-                    &PartCache::Part::grayRuns);
+        collectRuns(pixelParts, width, height, 0, 0, c.parts, &PartCache::Part::grayRuns);
         for (std::size_t p = 0; p < pixelParts.size(); ++p) {
             if (pixelParts[p] >= 0) c.ownedMask[p] |= PartCache::kGrayOwned;
         }

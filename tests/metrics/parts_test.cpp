@@ -189,19 +189,29 @@ TEST(PartCache, TwoEvaluatorsShareOneCache) {
     expectSameBits(second.result(), evaluate(image.view(), reference.view(), {}));
 }
 
-TEST(PartCache, MovesWithoutAnyChangedPixelKeepTheScore) {
-    // A part whose two states render alike (here: a state change with no rectangle) must not
-    // change the score when the image did not change.
+TEST(PartCache, APartListedTwiceEndsInItsLastState) {
+    // Moves 3 -> 2 -> 1 from state 1 leave part 3 where it was: nothing changes and state 2's
+    // entry is not filled from an image that does not show it.
     const PartScene scene = makeScene(120, 100, 3);
     const std::vector<int> counts(scene.parts.size(), scene.states);
     std::vector<int> state(scene.parts.size(), 1);
     const TestImage image = scene.render(state);
+    const TestImage reference = scene.render(std::vector<int>(scene.parts.size(), 0));
     auto cache = makePartCache(120, 100, {}, scene.pixelParts(), counts);
-    IncrementalEvaluator evaluator(scene.render(std::vector<int>(scene.parts.size(), 0)).view(), {});
+    IncrementalEvaluator evaluator(reference.view(), {});
     evaluator.setParts(cache, image.view(), state);
     const MetricResult before = evaluator.result();
-    evaluator.update(image.view(), {}, {});
+    const std::uint64_t filled = partCacheStats(*cache).filledEntries;
+    evaluator.update(image.view(), {}, std::vector<PartMove>{{3, 2}, {3, 1}});
     expectSameBits(evaluator.result(), before);
+    EXPECT_EQ(partCacheStats(*cache).filledEntries, filled);
+    // And 3 -> 0 -> 2 ends in 2, the state the image shows.
+    state[3] = 2;
+    const TestImage moved = scene.render(state);
+    const std::vector<UpdateRect> rects = {scene.bounds(3)};
+    evaluator.update(moved.view(), rects, std::vector<PartMove>{{3, 0}, {3, 2}});
+    expectSameBits(evaluator.result(), evaluate(moved.view(), reference.view(), {}));
+    EXPECT_EQ(partCacheStats(*cache).filledEntries, filled + 1);
 }
 
 TEST(PartCache, BadPartitionsAndMovesAreErrors) {
