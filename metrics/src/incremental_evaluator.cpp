@@ -18,8 +18,8 @@
 namespace lodopt::metrics {
 
 namespace {
-// A region whose share of live windows is above this computes whole (measured on the forest and
-// harbor views, docs/optimizer.md).
+// A region whose share of live windows is above this computes whole (chosen on the forest and
+// harbor walks, docs/optimizer.md "The owned-window cache").
 constexpr std::uint64_t kLiveShareNumerator = 1, kLiveShareDenominator = 2;
 }  // namespace
 
@@ -158,13 +158,9 @@ void IncrementalEvaluator::setParts(std::shared_ptr<PartCache> cache, const Imag
     State& s = *mState;
     if (!cache) throw MetricError("no part cache");
     const PartCache& c = *cache;
-    const bool grayHistogram =
-        s.informationOn && s.parameters.informationEntropyMode == EntropyMode::Histogram;
-    const bool sobelHistogram = s.boundaryOn && s.parameters.boundaryEntropyMode == EntropyMode::Histogram &&
-                                s.sobel.bins < 65536;
-    if (c.width != s.width || c.height != s.height || c.ssimOn != s.ssimOn || c.grayOn != grayHistogram ||
-        c.sobelOn != sobelHistogram || (s.ssimOn && c.ssimWindow != s.kernel.window) ||
-        (sobelHistogram && c.sobelBins != s.sobel.bins)) {
+    const PartCoverage coverage = partCoverage(s.parameters);
+    if (c.width != s.width || c.height != s.height || !(PartCoverage{c.ssimOn, c.grayOn, c.sobelOn} == coverage) ||
+        (coverage.ssim && c.ssimWindow != s.kernel.window) || (coverage.sobel && c.sobelBins != s.sobel.bins)) {
         throw MetricError("the part cache was made for another image size or metric parameters");
     }
     if (states.size() != c.parts.size()) {

@@ -102,7 +102,8 @@ constexpr int kSsimBlockRows = 64;
 constexpr int kSsimBlockColumns = 128;
 // Windows are compared with the reference in cells of kSsimBlockRows x kSsimCellColumns.
 constexpr int kSsimCellColumns = 64;
-// Row bands of the live-window pass (parts): shorter, to skip more (measured, docs/optimizer.md).
+// Row bands of the live-window pass (parts): shorter, to skip more (chosen on the forest and
+// harbor walks, docs/optimizer.md "The owned-window cache").
 constexpr int kSsimLiveBandRows = 16;
 constexpr int kSsimMaxWindow = 63;
 

@@ -92,12 +92,14 @@ std::shared_ptr<PartCache> makePartCache(int width, int height, const MetricPara
     c.width = width;
     c.height = height;
     c.parts.resize(std::size_t(partCount));
-    c.ownedMask.assign(pixelParts.size(), 0);
-    c.ssimOn = parameters.ssimWeight > 0;
-    c.grayOn = parameters.informationEntropyWeight > 0 && parameters.informationEntropyMode == EntropyMode::Histogram;
-    // The per-pixel path marks an owned Sobel pixel with the extra bin `bins`, a uint16.
-    c.sobelOn = parameters.boundaryEntropyWeight > 0 && parameters.boundaryEntropyMode == EntropyMode::Histogram &&
-                parameters.boundaryHistogramBins < 65536;
+    // Per pixel: bit kGrayOwned when a part owns its gray-histogram entry, kSobelOwned when a
+    // part owns its Sobel bin; the complements become the per-pixel path's free runs below.
+    constexpr std::uint8_t kGrayOwned = 1, kSobelOwned = 2;
+    std::vector<std::uint8_t> ownedMask(pixelParts.size(), 0);
+    const PartCoverage coverage = partCoverage(parameters);
+    c.ssimOn = coverage.ssim;
+    c.grayOn = coverage.gray;
+    c.sobelOn = coverage.sobel;
     c.sobelBins = parameters.boundaryHistogramBins;
 
     if (c.ssimOn) {
@@ -143,7 +145,7 @@ std::shared_ptr<PartCache> makePartCache(int width, int height, const MetricPara
     if (c.grayOn) {
         collectRuns(pixelParts, width, height, 0, 0, c.parts, &PartCache::Part::grayRuns);
         for (std::size_t p = 0; p < pixelParts.size(); ++p) {
-            if (pixelParts[p] >= 0) c.ownedMask[p] |= PartCache::kGrayOwned;
+            if (pixelParts[p] >= 0) ownedMask[p] |= kGrayOwned;
         }
     }
     if (c.sobelOn && width >= 3 && height >= 3) {
@@ -153,7 +155,7 @@ std::shared_ptr<PartCache> makePartCache(int width, int height, const MetricPara
         for (int y = 1; y + 1 < height; ++y) {
             for (int x = 1; x + 1 < width; ++x) {
                 if (owners[std::size_t(y - 1) * (width - 2) + std::size_t(x - 1)] >= 0) {
-                    c.ownedMask[std::size_t(y) * width + x] |= PartCache::kSobelOwned;
+                    ownedMask[std::size_t(y) * width + x] |= kSobelOwned;
                 }
             }
         }
@@ -162,7 +164,7 @@ std::shared_ptr<PartCache> makePartCache(int width, int height, const MetricPara
     auto freeRuns = [&](std::uint8_t bit, std::vector<PartCache::Run>& runs, std::vector<std::uint32_t>& start) {
         start.assign(std::size_t(height) + 1, 0);
         for (int y = 0; y < height; ++y) {
-            const std::uint8_t* row = c.ownedMask.data() + std::size_t(y) * width;
+            const std::uint8_t* row = ownedMask.data() + std::size_t(y) * width;
             for (int x = 0; x < width;) {
                 if (row[x] & bit) {
                     ++x;
@@ -176,8 +178,8 @@ std::shared_ptr<PartCache> makePartCache(int width, int height, const MetricPara
             start[std::size_t(y) + 1] = std::uint32_t(runs.size());
         }
     };
-    freeRuns(PartCache::kGrayOwned, c.grayFree, c.grayFreeStart);
-    freeRuns(PartCache::kSobelOwned, c.sobelFree, c.sobelFreeStart);
+    freeRuns(kGrayOwned, c.grayFree, c.grayFreeStart);
+    freeRuns(kSobelOwned, c.sobelFree, c.sobelFreeStart);
     c.entryOffset.assign(std::size_t(partCount) + 1, 0);
     for (int k = 0; k < partCount; ++k) {
         c.entryOffset[std::size_t(k) + 1] = c.entryOffset[std::size_t(k)] + std::size_t(stateCounts[std::size_t(k)]);
@@ -191,7 +193,8 @@ PartCacheStats partCacheStats(const PartCache& cache) {
     stats.parts = int(cache.parts.size());
     stats.entries = cache.entryOffset.empty() ? 0 : cache.entryOffset.back();
     stats.liveSsimWindows = cache.liveSsimWindows;
-    stats.bytes = cache.ownedMask.size();
+    stats.bytes = (cache.grayFree.size() + cache.sobelFree.size()) * sizeof(PartCache::Run) +
+                  (cache.grayFreeStart.size() + cache.sobelFreeStart.size()) * sizeof(std::uint32_t);
     for (const PartCache::Part& part : cache.parts) {
         stats.ownedSsimWindows += part.ssimWindows;
         for (const PartCache::Run& run : part.grayRuns) stats.ownedPixels += std::uint64_t(run.x1 - run.x0);

@@ -15,6 +15,18 @@
 
 namespace lodopt::metrics {
 
+// Which components a part cache covers for `parameters`: SSIM, and the two entropies in their
+// histogram form (the paper's forms stay per pixel). makePartCache and setParts both use this.
+struct PartCoverage {
+    bool ssim = false, gray = false, sobel = false;
+    bool operator==(const PartCoverage&) const = default;
+};
+inline PartCoverage partCoverage(const MetricParameters& parameters) {
+    return {parameters.ssimWeight > 0,
+            parameters.informationEntropyWeight > 0 && parameters.informationEntropyMode == EntropyMode::Histogram,
+            parameters.boundaryEntropyWeight > 0 && parameters.boundaryEntropyMode == EntropyMode::Histogram};
+}
+
 class PartCache {
 public:
     // A run of owned windows (or pixels) on one row: [x0, x1) on row y, map or image coordinates.
@@ -44,10 +56,6 @@ public:
     // What the analysis covers, checked against an evaluator's parameters in setParts.
     bool ssimOn = false, grayOn = false, sobelOn = false;
     int ssimWindow = 0, mapWidth = 0, mapHeight = 0, sobelBins = 0;
-    // Per pixel: bit kGrayOwned when its gray-histogram entry is owned by a part, bit
-    // kSobelOwned when its Sobel bin is; both skip the per-pixel histogram update.
-    static constexpr std::uint8_t kGrayOwned = 1, kSobelOwned = 2;
-    std::vector<std::uint8_t> ownedMask;
     // Per image row, the runs of pixels whose gray (Sobel) histogram entry is NOT owned: the
     // per-pixel path visits only these. Rows: [grayFreeStart[y], grayFreeStart[y + 1]).
     std::vector<Run> grayFree, sobelFree;
@@ -78,7 +86,6 @@ public:
         };
         return std::uint64_t(at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0));
     }
-    bool hasLiveTable() const { return !mLiveTable.empty(); }
     void setLiveTable(std::vector<std::int32_t> table) { mLiveTable = std::move(table); }
 
 private:

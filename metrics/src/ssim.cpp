@@ -239,45 +239,27 @@ bool inputsEqual(const std::int32_t* grayX, const std::int32_t* grayY, std::size
     return true;
 }
 
+// The first value v in [lo, hi) with has(v), given that has is false below some value and true
+// from it on, and true at hi - 1 at least.
+template <class Predicate>
+int firstWith(int lo, int hi, Predicate has) {
+    while (lo + 1 < hi) {
+        const int mid = lo + (hi - lo) / 2;
+        if (has(mid - 1)) hi = mid; else lo = mid;
+    }
+    return lo;
+}
+
 // The smallest sub-block of `block` holding all its live windows (it holds at least one):
-// the horizontal pass then covers only those rows and columns.
+// the horizontal pass then covers only those rows and columns. Binary searches on the
+// summed-area table, each bound against the ones found before it.
 Block trimToLive(const PartCache& live, Block block) {
     int x0 = block.bx, x1 = block.bx + block.columns, y0 = block.by, y1 = block.by + block.rows;
-    // Binary searches on the summed-area table: the first row (column) with a live window, the
-    // last one.
-    auto firstRow = [&] {
-        int lo = y0, hi = y1 - 1;  // the answer is in [lo, hi]
-        while (lo < hi) {
-            const int mid = (lo + hi) / 2;
-            if (live.liveWindows(x0, y0, x1, mid + 1) > 0) hi = mid; else lo = mid + 1;
-        }
-        return lo;
-    };
-    y0 = firstRow();
-    {
-        int lo = y0, hi = y1 - 1;  // last row: largest r with live windows in [r, y1)
-        while (lo < hi) {
-            const int mid = (lo + hi + 1) / 2;
-            if (live.liveWindows(x0, mid, x1, y1) > 0) lo = mid; else hi = mid - 1;
-        }
-        y1 = lo + 1;
-    }
-    {
-        int lo = x0, hi = x1 - 1;
-        while (lo < hi) {
-            const int mid = (lo + hi) / 2;
-            if (live.liveWindows(x0, y0, mid + 1, y1) > 0) hi = mid; else lo = mid + 1;
-        }
-        x0 = lo;
-    }
-    {
-        int lo = x0, hi = x1 - 1;
-        while (lo < hi) {
-            const int mid = (lo + hi + 1) / 2;
-            if (live.liveWindows(mid, y0, x1, y1) > 0) lo = mid; else hi = mid - 1;
-        }
-        x1 = lo + 1;
-    }
+    y0 = firstWith(y0, y1, [&](int r) { return live.liveWindows(x0, y0, x1, r + 1) > 0; });
+    // The last row: the first r (counting down from y1) with live windows in [r, y1).
+    y1 = y1 - firstWith(0, y1 - y0, [&](int k) { return live.liveWindows(x0, y1 - 1 - k, x1, y1) > 0; });
+    x0 = firstWith(x0, x1, [&](int c) { return live.liveWindows(x0, y0, c + 1, y1) > 0; });
+    x1 = x1 - firstWith(0, x1 - x0, [&](int k) { return live.liveWindows(x1 - 1 - k, y0, x1, y1) > 0; });
     return {x0, y0, x1 - x0, y1 - y0};
 }
 

@@ -69,11 +69,12 @@ TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
     EXPECT_TRUE(result["levels"].contains("ship"));
     EXPECT_GT(result["evaluations"].get<int>(), 0);
     // The fast path's owned-window cache: ship_close has three searched objects, each owning
-    // windows, and the search filled some (object, level) entries.
+    // windows; the three starting levels' entries are filled when the evaluator is built, so
+    // more than three means the search moved objects and filled the entries of other levels.
     const nlohmann::json& owned = result["owned_windows"];
     ASSERT_TRUE(owned.is_object()) << owned.dump();
     EXPECT_GT(owned["owned_ssim_windows"].get<std::int64_t>(), 0);
-    EXPECT_GE(owned["entries_filled"].get<std::int64_t>(), 3);
+    EXPECT_GT(owned["entries_filled"].get<std::int64_t>(), 3);
     EXPECT_LE(owned["entries_filled"].get<std::int64_t>(), owned["entries"].get<std::int64_t>());
     EXPECT_TRUE(std::filesystem::exists(out / "curve.csv"));
     EXPECT_TRUE(std::filesystem::exists(out / "optimized.png"));
