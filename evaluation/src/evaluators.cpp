@@ -330,11 +330,12 @@ metrics::PartCacheStats LayerEvaluator::partCacheStats() const {
 
 FullRenderEvaluator::FullRenderEvaluator(const ViewSetup& setup, renderer::Renderer& renderer,
                                          const metrics::MetricParameters& parameters)
-    : mSetup(setup), mRenderer(renderer), mParameters(parameters) {}
+    : mSetup(setup), mRenderer(renderer), mParameters(parameters), mMetrics(viewOf(setup.reference()), parameters) {}
 
 metrics::MetricResult FullRenderEvaluator::metricsOf(const optimizer::Combination& combination) {
     mRenderer.render(mSetup.toScene(combination), mSetup.camera(), mFrame);
-    return metrics::evaluate(viewOf(mFrame), viewOf(mSetup.reference()), mParameters);
+    mMetrics.setCandidate(viewOf(mFrame));  // every pixel, from scratch
+    return mMetrics.result();
 }
 
 optimizer::Score FullRenderEvaluator::evaluate(const optimizer::Combination& combination) {

@@ -134,6 +134,42 @@ TEST(Evaluators, FastAndFullPathsAgreeOnEveryHarborView) {
     }
 }
 
+TEST(Evaluators, FullPathKeepsNoStateBetweenCandidates) {
+    // The full path reuses one metric state (its buffers) for every candidate: each score must
+    // still be the from-scratch metrics of that candidate's render, bit for bit, whatever was
+    // evaluated before it (with precision/recall, every component).
+    scenes::Scene scene = scenes::makeHarborScene();
+    renderer::Renderer renderer(scene, settings(160));
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    const metrics::MetricParameters parameters;  // precision/recall on
+    evaluation::FullRenderEvaluator full(setup, renderer, parameters);
+    const std::vector<int> counts = setup.levelCounts();
+    std::mt19937 random(5);
+    std::vector<optimizer::Combination> combinations = {optimizer::Combination(counts.size(), 0)};
+    for (int k = 0; k < 6; ++k) combinations.push_back(randomCombination(counts, random));
+    combinations.push_back(combinations[1]);  // again, after others
+    int belowOne = 0;
+    for (const optimizer::Combination& combination : combinations) {
+        const metrics::MetricResult reused = full.metricsOf(combination);
+        renderer::Frame frame;
+        renderer.render(setup.toScene(combination), setup.camera(), frame);
+        const metrics::MetricResult fresh =
+            metrics::evaluate(metrics::makeImageView(frame.rgba.data(), frame.width, frame.height, 4),
+                              metrics::makeImageView(setup.reference().rgba.data(), frame.width, frame.height, 4),
+                              parameters);
+        const std::string name = optimizer::formatCombination(combination);
+        EXPECT_EQ(reused.fitness, fresh.fitness) << name;
+        EXPECT_EQ(reused.ssim, fresh.ssim) << name;
+        EXPECT_EQ(reused.boundaryEntropy.candidate, fresh.boundaryEntropy.candidate) << name;
+        EXPECT_EQ(reused.informationEntropy.candidate, fresh.informationEntropy.candidate) << name;
+        EXPECT_EQ(reused.precision, fresh.precision) << name;
+        EXPECT_EQ(reused.recall, fresh.recall) << name;
+        if (fresh.fitness < 1.0) ++belowOne;
+    }
+    EXPECT_DOUBLE_EQ(full.metricsOf(combinations[0]).fitness, 1.0);  // the reference itself
+    EXPECT_GT(belowOne, 0);  // the candidates really differ from the reference
+}
+
 TEST(Evaluators, BatchScoresDoNotDependOnThreadCountStatesOrOrder) {
     scenes::Scene scene = scenes::makeHarborScene();
     renderer::Renderer renderer(scene, settings(192));

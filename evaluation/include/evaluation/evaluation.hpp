@@ -21,7 +21,9 @@
 // metrics equal a from-scratch computation to the bit, the scores do not depend on which
 // state evaluates a candidate, the order or the thread count.
 // Full path (FullRenderEvaluator, `--eval full`): render the whole combination with OpenGL
-// and compute the metrics from scratch; serial (one GL context).
+// and compute the metrics from scratch over the whole image; serial (one GL context). The
+// metric buffers are kept between candidates (IncrementalEvaluator::setCandidate, the same
+// bits as metrics::evaluate): allocating them per candidate cost more than the metrics here.
 #pragma once
 
 #include <cstdint>
@@ -196,6 +198,7 @@ private:
     renderer::Renderer& mRenderer;
     metrics::MetricParameters mParameters;
     renderer::Frame mFrame;
+    metrics::IncrementalEvaluator mMetrics;  // reused: setCandidate recomputes every pixel
 };
 
 // Plain-number hints for the distance, importance and screen-size baselines.
