@@ -72,4 +72,25 @@ std::vector<bool> heldOutViews(int count, int holdout) {
     return heldOut;
 }
 
+std::vector<int> tuningFolds(const std::vector<bool>& heldOut, int folds) {
+    std::vector<int> fold(heldOut.size(), -1);
+    int next = 0;
+    for (std::size_t k = 0; k < heldOut.size(); ++k) {
+        if (!heldOut[k]) fold[k] = next++ % std::max(folds, 1);
+    }
+    return fold;
+}
+
+int chooseByCrossValidation(double defaultsScore, const std::vector<double>& candidateScores, double margin) {
+    int chosen = -1;
+    double best = defaultsScore;
+    for (std::size_t i = 0; i < candidateScores.size(); ++i) {
+        if (candidateScores[i] > best + margin) {
+            chosen = int(i);
+            best = candidateScores[i];
+        }
+    }
+    return chosen;
+}
+
 }  // namespace lodopt::cli

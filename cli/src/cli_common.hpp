@@ -47,6 +47,13 @@ std::vector<int> parseIntList(const std::string& text, const std::string& what);
 // sampled in turn around V named views are not all held out around the same one when the
 // run length is a multiple of V.
 std::vector<bool> heldOutViews(int count, int holdout);
+// Cross-validation folds of a tuning run: fold k % folds for the k-th view not held out (in
+// list order, so that each fold spreads along a path), -1 for held-out views; folds >= 1.
+std::vector<int> tuningFolds(const std::vector<bool>& heldOut, int folds);
+// The set a cross-validated tuning writes: -1 for the published defaults, else the index of
+// the candidate with the best score. A candidate must beat the defaults and every earlier
+// candidate by more than `margin`: ties keep the simpler set.
+int chooseByCrossValidation(double defaultsScore, const std::vector<double>& candidateScores, double margin = 1e-12);
 // Parses "512x512".
 void parseSize(const std::string& text, int& width, int& height);
 

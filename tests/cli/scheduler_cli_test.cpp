@@ -174,6 +174,15 @@ protected:
                sProfile + " --budget-ms " + std::to_string(sBudget) + " --out " + sCoefficients + " --quiet";
     }
 
+    // tuneArguments() writing tune/<name>.json, beside a copy of the first run's view
+    // checkpoints under that name, so that --resume reuses them.
+    static std::string resumingArguments(const std::string& name) {
+        std::filesystem::copy(sDir / "tune" / "coeffs_views", sDir / "tune" / (name + "_views"));
+        std::string arguments = tuneArguments();
+        const std::string out = (sDir / "tune" / (name + ".json")).string();
+        return arguments.replace(arguments.find(sCoefficients), sCoefficients.size(), out);
+    }
+
     void SetUp() override {
         if (!sCalibrated) GTEST_SKIP() << "lodopt calibrate failed (no OpenGL context?)";
     }
@@ -221,6 +230,37 @@ TEST(TuneHoldout, SpreadOverTheListAndOverTheNamedViews) {
     EXPECT_EQ(std::count(none.begin(), none.end(), true), 0);
 }
 
+TEST(TuneCrossValidation, FoldsSpreadOverTheTuningViewsAndSkipHeldOutOnes) {
+    const std::vector<bool> heldOut = lodopt::cli::heldOutViews(16, 4);
+    const std::vector<int> folds = lodopt::cli::tuningFolds(heldOut, 3);
+    ASSERT_EQ(folds.size(), 16u);
+    std::vector<int> perFold(3, 0);
+    int previous = -1;
+    for (std::size_t k = 0; k < 16; ++k) {
+        if (heldOut[k]) {
+            EXPECT_EQ(folds[k], -1) << k;
+            continue;
+        }
+        ASSERT_GE(folds[k], 0);
+        ASSERT_LT(folds[k], 3);
+        EXPECT_EQ(folds[k], (previous + 1) % 3) << k;  // in turn along the list
+        previous = folds[k];
+        ++perFold[std::size_t(folds[k])];
+    }
+    EXPECT_EQ(perFold, (std::vector<int>{4, 4, 4}));
+}
+
+TEST(TuneCrossValidation, DefaultsStayUnlessATunedSetScoresBetterOutOfFold) {
+    using lodopt::cli::chooseByCrossValidation;
+    EXPECT_EQ(chooseByCrossValidation(1.0, {0.99, 0.98}), -1);          // both lose: the defaults
+    EXPECT_EQ(chooseByCrossValidation(1.0, {1.0, 1.0}), -1);            // ties keep the defaults
+    EXPECT_EQ(chooseByCrossValidation(1.0, {1.01, 0.99}), 0);
+    EXPECT_EQ(chooseByCrossValidation(1.0, {1.01, 1.02}), 1);
+    EXPECT_EQ(chooseByCrossValidation(1.0, {1.02, 1.02}), 0);           // a tie between forms: the first
+    EXPECT_EQ(chooseByCrossValidation(1.0, {NAN, 1.01}), 1);            // a form without a score never wins
+    EXPECT_EQ(chooseByCrossValidation(1.0, {1.0 + 1e-13}), -1);         // within the margin
+}
+
 TEST_F(SchedulerCli, TuneReportsTunedAndPublishedFractions) {
     ASSERT_EQ(sTune.exitCode, 0) << sTune.output;
     const nlohmann::json report = parseOrFail(sTune);
@@ -246,6 +286,15 @@ TEST_F(SchedulerCli, TuneReportsTunedAndPublishedFractions) {
     EXPECT_GE(report["tuned"]["tuning_fraction"].get<double>(), report["defaults"]["tuning_fraction"].get<double>());
     EXPECT_TRUE(report["forms"].contains("published"));
     EXPECT_TRUE(report["forms"].contains("extended"));
+    // The default choice: the form with the better tuning score; "tuned" reports that set.
+    EXPECT_EQ(report["selection"]["rule"], "tuning");
+    EXPECT_FALSE(report["selection"].contains("folds"));
+    EXPECT_FALSE(report["forms"]["published"].contains("cross_validated_fraction"));
+    const double published = report["forms"]["published"]["tuning_fraction"].get<double>();
+    const double extended = report["forms"]["extended"]["tuning_fraction"].get<double>();
+    const std::string writtenForm = extended > published + 1e-12 ? "extended" : "published";
+    EXPECT_EQ(report["selection"]["written"], writtenForm);
+    EXPECT_EQ(report["coefficients"], report["forms"][writtenForm]["coefficients"]);
     // The file is a valid coefficients file with the report inside; one checkpoint per view.
     const lodopt::scheduler::SchedulerCoefficients c = lodopt::scheduler::loadCoefficients(sCoefficients);
     EXPECT_GT(c.importance.alpha1 + c.importance.alpha2, 0.0);
@@ -256,14 +305,46 @@ TEST_F(SchedulerCli, TuneReportsTunedAndPublishedFractions) {
     }
 }
 
+TEST_F(SchedulerCli, SelectCvWritesTheDefaultsOrTheBestFormOutOfFold) {
+    ASSERT_EQ(sTune.exitCode, 0);
+    const std::string out = (sDir / "tune" / "bycv.json").string();
+    const CommandResult result = run(resumingArguments("bycv") + " --resume --select cv --json");
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    const nlohmann::json report = parseOrFail(result);
+    // 3 tuning views, 3 folds (the default); the written set is the defaults or the form whose
+    // out-of-fold score beats them, and "tuned" reports that set.
+    EXPECT_EQ(report["selection"]["rule"], "cv");
+    EXPECT_EQ(report["selection"]["folds"], 3);
+    const std::string writtenSet = report["selection"]["written"].get<std::string>();
+    double bestScore = report["selection"]["defaults_cross_validated_fraction"].get<double>();
+    EXPECT_EQ(bestScore, report["defaults"]["tuning_fraction"].get<double>());  // nothing fitted
+    std::string bestSet = "defaults";
+    for (const char* form : {"published", "extended"}) {
+        const double score = report["forms"][form]["cross_validated_fraction"].get<double>();
+        EXPECT_GT(score, 0.0) << form;
+        if (score > bestScore + 1e-12) {
+            bestScore = score;
+            bestSet = form;
+        }
+    }
+    EXPECT_EQ(writtenSet, bestSet);
+    if (writtenSet == "defaults") {
+        EXPECT_EQ(report["tuned"], report["defaults"]);
+        EXPECT_EQ(lodopt::scheduler::loadCoefficients(out).importance.alpha1, 0.6);
+    } else {
+        EXPECT_EQ(report["coefficients"], report["forms"][writtenSet]["coefficients"]);
+        EXPECT_EQ(report["tuned"]["held_out_fraction"], report["forms"][writtenSet]["held_out_fraction"]);
+    }
+    // The searches on all tuning views do not depend on the rule.
+    const nlohmann::json first = parseOrFail(sTune);
+    EXPECT_EQ(report["forms"]["published"]["coefficients"], first["forms"]["published"]["coefficients"]);
+    EXPECT_EQ(report["forms"]["extended"]["coefficients"], first["forms"]["extended"]["coefficients"]);
+}
+
 TEST_F(SchedulerCli, ResumeSkipsFinishedViewsAndGivesTheSameAnswer) {
     ASSERT_EQ(sTune.exitCode, 0);
     const nlohmann::json first = parseOrFail(sTune);
-    const std::string again = (sDir / "tune" / "again.json").string();
-    // A checkpoint folder of the first run, under the second output's name.
-    std::filesystem::copy(sDir / "tune" / "coeffs_views", sDir / "tune" / "again_views");
-    std::string arguments = tuneArguments();
-    arguments.replace(arguments.find(sCoefficients), sCoefficients.size(), again);
+    const std::string arguments = resumingArguments("again");
     const CommandResult resumed = run(arguments + " --resume --json");
     ASSERT_EQ(resumed.exitCode, 0) << resumed.output;
     const nlohmann::json second = parseOrFail(resumed);
