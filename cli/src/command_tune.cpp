@@ -276,6 +276,10 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     // Cross-validation needs two folds of at least one tuning view each.
     const int folds = std::min(options.folds, options.views - holdout);
     const bool crossValidate = options.select == "cv" && folds >= 2;
+    if (options.select == "cv" && !crossValidate) {
+        std::cerr << "lodopt: warning: --select cv needs at least 2 tuning views (this run has "
+                  << options.views - holdout << "); choosing by the tuning score\n";
+    }
     const std::vector<int> foldOf = tuningFolds(heldOutFlags, folds);
     for (int k = 0; k < options.views; ++k) {
         views[std::size_t(k)].camera = cameras[std::size_t(k)];

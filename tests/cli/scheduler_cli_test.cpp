@@ -341,6 +341,20 @@ TEST_F(SchedulerCli, SelectCvWritesTheDefaultsOrTheBestFormOutOfFold) {
     EXPECT_EQ(report["forms"]["extended"]["coefficients"], first["forms"]["extended"]["coefficients"]);
 }
 
+TEST_F(SchedulerCli, SelectCvWithOneTuningViewFallsBackToTheTuningScore) {
+    // 2 views, 1 held out: one tuning view cannot be split into folds.
+    const std::string out = (sDir / "tune_two" / "coeffs.json").string();
+    const CommandResult result =
+        run("tune --scene harbor --views 2 --evals 8 --max-iterations 2 --search-evals 8 --size 96x96 --threads 1 "
+            "--profile " + sProfile + " --budget-ms " + std::to_string(sBudget) + " --out " + out +
+            " --select cv --quiet --json");
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    const nlohmann::json report = parseOrFail(result);
+    EXPECT_EQ(report["selection"]["rule"], "tuning");
+    EXPECT_NE(report["selection"]["written"], "defaults");
+    EXPECT_FALSE(report["forms"]["published"].contains("cross_validated_fraction"));
+}
+
 TEST_F(SchedulerCli, ResumeSkipsFinishedViewsAndGivesTheSameAnswer) {
     ASSERT_EQ(sTune.exitCode, 0);
     const nlohmann::json first = parseOrFail(sTune);
