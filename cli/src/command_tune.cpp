@@ -373,7 +373,8 @@ void runTune(TuneOptions options, const OutputOptions& output) {
         }
     }
     const bool keptDefaults = chosen < 0;
-    const scheduler::SchedulerCoefficients written = keptDefaults ? defaults : results[std::size_t(chosen)].coefficients;
+    const scheduler::SchedulerCoefficients written =
+        keptDefaults ? defaults : results[std::size_t(chosen)].coefficients;
     const double writtenTuning = keptDefaults ? defaultTuning : results[std::size_t(chosen)].search.bestValue;
     const double writtenHeldOut = keptDefaults ? defaultHeldOut : results[std::size_t(chosen)].heldOutMean;
     const std::string writtenName =
@@ -448,19 +449,20 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     std::cout << prepared.scene.name << ": " << options.views << " views (" << holdout << " held out), budget "
               << options.optimize.budgetMs << " ms, optimizer " << options.optimize.algorithm << "\n";
     // Cross-validated: the mean out-of-fold fraction over the tuning views (the choice's score).
-    auto crossValidated = [&](double value) {
+    auto crossValidatedText = [&](double value) {
         std::ostringstream text;
         text << std::fixed << std::setprecision(4) << value;
         return crossValidate ? text.str() : std::string("     -");
     };
     std::cout << "scheduler fitness / optimizer fitness      tuning   " << (crossValidate ? "cross-val" : "         ")
               << "   held-out\n";
-    std::cout << "  published defaults (a1 0.6, a2 0.4)      " << defaultTuning << "   " << crossValidated(defaultTuning)
-              << "      " << defaultHeldOut << (keptDefaults ? "  <- written" : "") << "\n";
+    std::cout << "  published defaults (a1 0.6, a2 0.4)      " << defaultTuning << "   "
+              << crossValidatedText(defaultTuning) << "      " << defaultHeldOut << (keptDefaults ? "  <- written" : "")
+              << "\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
         const FormResult& r = results[i];
         std::cout << "  tuned, " << std::left << std::setw(34) << scheduler::toString(r.form) << std::right
-                  << r.search.bestValue << "   " << crossValidated(r.crossValidated) << "      " << r.heldOutMean
+                  << r.search.bestValue << "   " << crossValidatedText(r.crossValidated) << "      " << r.heldOutMean
                   << (int(i) == chosen ? "  <- written" : "") << "\n";
     }
     if (crossValidate) {
@@ -523,9 +525,10 @@ void addTuneCommand(CLI::App& app) {
     command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();
     command->add_option("--profile", o.profile, "Device profile from 'lodopt calibrate' (default: shipped)");
     command->add_option("--model", o.model, "Time model in the profile");
-    command->add_option("--select", options->select,
-                        "Written set: tuning (the form with the best tuning score) or cv (the defaults or a tuned "
-                        "form, by cross-validation over the tuning views)")
+    command
+        ->add_option("--select", options->select,
+                     "Written set: tuning (the form with the best tuning score) or cv (the defaults or a tuned "
+                     "form, by cross-validation over the tuning views)")
         ->check(CLI::IsMember({"cv", "tuning"}))
         ->capture_default_str();
     command->add_option("--folds", options->folds, "Cross-validation folds (--select cv)")
