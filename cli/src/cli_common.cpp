@@ -81,13 +81,13 @@ std::vector<int> tuningFolds(const std::vector<bool>& heldOut, int folds) {
     return fold;
 }
 
-int chooseByCrossValidation(double defaultsScore, const std::vector<double>& candidateScores, double margin) {
+int firstBestAbove(double floor, const std::vector<double>& scores, double margin) {
     int chosen = -1;
-    double best = defaultsScore;
-    for (std::size_t i = 0; i < candidateScores.size(); ++i) {
-        if (candidateScores[i] > best + margin) {
+    double best = floor;
+    for (std::size_t i = 0; i < scores.size(); ++i) {
+        if (scores[i] > best + margin) {
             chosen = int(i);
-            best = candidateScores[i];
+            best = scores[i];
         }
     }
     return chosen;

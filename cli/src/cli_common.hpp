@@ -50,10 +50,11 @@ std::vector<bool> heldOutViews(int count, int holdout);
 // Cross-validation folds of a tuning run: fold k % folds for the k-th view not held out (in
 // list order, so that each fold spreads along a path), -1 for held-out views; folds >= 1.
 std::vector<int> tuningFolds(const std::vector<bool>& heldOut, int folds);
-// The set a cross-validated tuning writes: -1 for the published defaults, else the index of
-// the candidate with the best score. A candidate must beat the defaults and every earlier
-// candidate by more than `margin`: ties keep the simpler set.
-int chooseByCrossValidation(double defaultsScore, const std::vector<double>& candidateScores, double margin = 1e-12);
+// The index of the first best score that beats `floor` and every earlier score by more than
+// `margin`, -1 when none beats `floor` (a NaN never does): ties keep the earlier, simpler set.
+// tune writes the form it picks among the forms' tuning scores (floor -infinity) or, with
+// cross-validation, among their out-of-fold scores over the defaults' (-1: the defaults).
+int firstBestAbove(double floor, const std::vector<double>& scores, double margin = 1e-12);
 // Parses "512x512".
 void parseSize(const std::string& text, int& width, int& height);
 

@@ -179,6 +179,39 @@ double meanFraction(std::vector<TuneView>& views, bool heldOut, scheduler::Frame
                             [heldOut](const TuneView& view) { return view.heldOut == heldOut; });
 }
 
+// The compass search from the published defaults, maximising the mean fraction over the
+// views `keep` accepts.
+template <class Keep>
+scheduler::PatternSearchResult searchOver(std::vector<TuneView>& views, scheduler::FrameScheduler& frameScheduler,
+                                          const scheduler::TuningSpace& space,
+                                          const scheduler::PatternSearchOptions& searchOptions, Keep keep) {
+    auto objective = [&](const std::vector<double>& x) {
+        return meanFractionOver(views, frameScheduler, space.coefficientsAt(x), keep);
+    };
+    return scheduler::patternSearch(objective, space.pointOf(scheduler::SchedulerCoefficients{}), space.lower(),
+                                    space.upper(), space.steps(), searchOptions);
+}
+
+// k-fold cross-validation of one form: each fold of the tuning views is scored with the
+// coefficients searched on the other folds; the mean over all tuning views.
+double crossValidatedFraction(std::vector<TuneView>& views, scheduler::FrameScheduler& frameScheduler,
+                              const scheduler::TuningSpace& space, const scheduler::PatternSearchOptions& searchOptions,
+                              int folds) {
+    double sum = 0.0;
+    int count = 0;
+    for (int f = 0; f < folds; ++f) {
+        const scheduler::PatternSearchResult search = searchOver(
+            views, frameScheduler, space, searchOptions, [f](const TuneView& v) { return !v.heldOut && v.fold != f; });
+        const scheduler::SchedulerCoefficients fitted = space.coefficientsAt(search.best);
+        for (TuneView& view : views) {
+            if (view.heldOut || view.fold != f) continue;
+            sum += schedulerFraction(view, frameScheduler, fitted);
+            ++count;
+        }
+    }
+    return count > 0 ? sum / count : NAN;
+}
+
 nlohmann::json coefficientsJson(const scheduler::SchedulerCoefficients& c) {
     return nlohmann::json::parse(scheduler::coefficientsToJson(c));
 }
@@ -323,37 +356,16 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     std::vector<FormResult> results;
     for (scheduler::ImportanceForm form : forms) {
         const scheduler::TuningSpace space(form, scales, thresholdCount);
-        auto objective = [&](const std::vector<double>& x) {
-            return meanFraction(views, false, frameScheduler, space.coefficientsAt(x));
-        };
         scheduler::PatternSearchOptions searchOptions;
         searchOptions.maxEvaluations = options.searchEvaluations;
         searchOptions.seed = options.optimize.seed;
         FormResult r{form, {}, {}, 0.0};
-        r.search = scheduler::patternSearch(objective, space.pointOf(defaults), space.lower(), space.upper(),
-                                            space.steps(), searchOptions);
+        r.search =
+            searchOver(views, frameScheduler, space, searchOptions, [](const TuneView& v) { return !v.heldOut; });
         r.coefficients = space.coefficientsAt(r.search.best);
         r.heldOutMean = meanFraction(views, true, frameScheduler, r.coefficients);
-        if (crossValidate) {
-            // Each fold scored with coefficients searched on the other folds only.
-            double sum = 0.0;
-            int count = 0;
-            for (int f = 0; f < folds; ++f) {
-                auto training = [f](const TuneView& view) { return !view.heldOut && view.fold != f; };
-                auto foldObjective = [&](const std::vector<double>& x) {
-                    return meanFractionOver(views, frameScheduler, space.coefficientsAt(x), training);
-                };
-                const scheduler::PatternSearchResult foldSearch = scheduler::patternSearch(
-                    foldObjective, space.pointOf(defaults), space.lower(), space.upper(), space.steps(), searchOptions);
-                const scheduler::SchedulerCoefficients fitted = space.coefficientsAt(foldSearch.best);
-                for (TuneView& view : views) {
-                    if (view.heldOut || view.fold != f) continue;
-                    sum += schedulerFraction(view, frameScheduler, fitted);
-                    ++count;
-                }
-            }
-            r.crossValidated = count > 0 ? sum / count : NAN;
-        }
+        if (crossValidate)
+            r.crossValidated = crossValidatedFraction(views, frameScheduler, space, searchOptions, folds);
         results.push_back(r);
     }
     const double defaultTuning = meanFraction(views, false, frameScheduler, defaults);
@@ -362,16 +374,10 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     // of fold (nothing is fitted for the defaults, so their out-of-fold score is their tuning
     // score). Without: the form with the better tuning score. Ties keep the simpler set; the
     // held-out views play no part in the choice.
-    int chosen = 0;  // index into results, -1 for the defaults
-    if (crossValidate) {
-        std::vector<double> scores;
-        for (const FormResult& r : results) scores.push_back(r.crossValidated);
-        chosen = chooseByCrossValidation(defaultTuning, scores);
-    } else {
-        for (std::size_t i = 1; i < results.size(); ++i) {
-            if (results[i].search.bestValue > results[std::size_t(chosen)].search.bestValue + 1e-12) chosen = int(i);
-        }
-    }
+    std::vector<double> scores;
+    for (const FormResult& r : results) scores.push_back(crossValidate ? r.crossValidated : r.search.bestValue);
+    // Index into results, -1 for the defaults (only cross-validation compares with them).
+    const int chosen = firstBestAbove(crossValidate ? defaultTuning : -INFINITY, scores);
     const bool keptDefaults = chosen < 0;
     const scheduler::SchedulerCoefficients written =
         keptDefaults ? defaults : results[std::size_t(chosen)].coefficients;

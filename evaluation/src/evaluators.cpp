@@ -330,7 +330,7 @@ metrics::PartCacheStats LayerEvaluator::partCacheStats() const {
 
 FullRenderEvaluator::FullRenderEvaluator(const ViewSetup& setup, renderer::Renderer& renderer,
                                          const metrics::MetricParameters& parameters)
-    : mSetup(setup), mRenderer(renderer), mParameters(parameters), mMetrics(viewOf(setup.reference()), parameters) {}
+    : mSetup(setup), mRenderer(renderer), mMetrics(viewOf(setup.reference()), parameters) {}
 
 metrics::MetricResult FullRenderEvaluator::metricsOf(const optimizer::Combination& combination) {
     mRenderer.render(mSetup.toScene(combination), mSetup.camera(), mFrame);

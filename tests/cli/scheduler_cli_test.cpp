@@ -251,14 +251,19 @@ TEST(TuneCrossValidation, FoldsSpreadOverTheTuningViewsAndSkipHeldOutOnes) {
 }
 
 TEST(TuneCrossValidation, DefaultsStayUnlessATunedSetScoresBetterOutOfFold) {
-    using lodopt::cli::chooseByCrossValidation;
-    EXPECT_EQ(chooseByCrossValidation(1.0, {0.99, 0.98}), -1);          // both lose: the defaults
-    EXPECT_EQ(chooseByCrossValidation(1.0, {1.0, 1.0}), -1);            // ties keep the defaults
-    EXPECT_EQ(chooseByCrossValidation(1.0, {1.01, 0.99}), 0);
-    EXPECT_EQ(chooseByCrossValidation(1.0, {1.01, 1.02}), 1);
-    EXPECT_EQ(chooseByCrossValidation(1.0, {1.02, 1.02}), 0);           // a tie between forms: the first
-    EXPECT_EQ(chooseByCrossValidation(1.0, {NAN, 1.01}), 1);            // a form without a score never wins
-    EXPECT_EQ(chooseByCrossValidation(1.0, {1.0 + 1e-13}), -1);         // within the margin
+    using lodopt::cli::firstBestAbove;
+    // Cross-validation: the floor is the defaults' score.
+    EXPECT_EQ(firstBestAbove(1.0, {0.99, 0.98}), -1);   // both lose: the defaults
+    EXPECT_EQ(firstBestAbove(1.0, {1.0, 1.0}), -1);     // ties keep the defaults
+    EXPECT_EQ(firstBestAbove(1.0, {1.01, 0.99}), 0);
+    EXPECT_EQ(firstBestAbove(1.0, {1.01, 1.02}), 1);
+    EXPECT_EQ(firstBestAbove(1.0, {1.02, 1.02}), 0);    // a tie between forms: the first
+    EXPECT_EQ(firstBestAbove(1.0, {NAN, 1.01}), 1);     // a form without a score never wins
+    EXPECT_EQ(firstBestAbove(1.0, {1.0 + 1e-13}), -1);  // within the margin
+    // By tuning score: no floor, so some form is always chosen, ties to the first.
+    EXPECT_EQ(firstBestAbove(-INFINITY, {0.5, 0.4}), 0);
+    EXPECT_EQ(firstBestAbove(-INFINITY, {0.5, 0.5 + 1e-13}), 0);
+    EXPECT_EQ(firstBestAbove(-INFINITY, {0.5, 0.6}), 1);
 }
 
 TEST_F(SchedulerCli, TuneReportsTunedAndPublishedFractions) {
@@ -290,9 +295,9 @@ TEST_F(SchedulerCli, TuneReportsTunedAndPublishedFractions) {
     EXPECT_EQ(report["selection"]["rule"], "tuning");
     EXPECT_FALSE(report["selection"].contains("folds"));
     EXPECT_FALSE(report["forms"]["published"].contains("cross_validated_fraction"));
-    const double published = report["forms"]["published"]["tuning_fraction"].get<double>();
-    const double extended = report["forms"]["extended"]["tuning_fraction"].get<double>();
-    const std::string writtenForm = extended > published + 1e-12 ? "extended" : "published";
+    const int best = lodopt::cli::firstBestAbove(-INFINITY, {report["forms"]["published"]["tuning_fraction"].get<double>(),
+                                                              report["forms"]["extended"]["tuning_fraction"].get<double>()});
+    const std::string writtenForm = best == 1 ? "extended" : "published";
     EXPECT_EQ(report["selection"]["written"], writtenForm);
     EXPECT_EQ(report["coefficients"], report["forms"][writtenForm]["coefficients"]);
     // The file is a valid coefficients file with the report inside; one checkpoint per view.
@@ -316,18 +321,15 @@ TEST_F(SchedulerCli, SelectCvWritesTheDefaultsOrTheBestFormOutOfFold) {
     EXPECT_EQ(report["selection"]["rule"], "cv");
     EXPECT_EQ(report["selection"]["folds"], 3);
     const std::string writtenSet = report["selection"]["written"].get<std::string>();
-    double bestScore = report["selection"]["defaults_cross_validated_fraction"].get<double>();
-    EXPECT_EQ(bestScore, report["defaults"]["tuning_fraction"].get<double>());  // nothing fitted
-    std::string bestSet = "defaults";
+    const double defaultsScore = report["selection"]["defaults_cross_validated_fraction"].get<double>();
+    EXPECT_EQ(defaultsScore, report["defaults"]["tuning_fraction"].get<double>());  // nothing fitted
+    std::vector<double> scores;
     for (const char* form : {"published", "extended"}) {
-        const double score = report["forms"][form]["cross_validated_fraction"].get<double>();
-        EXPECT_GT(score, 0.0) << form;
-        if (score > bestScore + 1e-12) {
-            bestScore = score;
-            bestSet = form;
-        }
+        scores.push_back(report["forms"][form]["cross_validated_fraction"].get<double>());
+        EXPECT_GT(scores.back(), 0.0) << form;
     }
-    EXPECT_EQ(writtenSet, bestSet);
+    const int best = lodopt::cli::firstBestAbove(defaultsScore, scores);
+    EXPECT_EQ(writtenSet, best < 0 ? "defaults" : best == 0 ? "published" : "extended");
     if (writtenSet == "defaults") {
         EXPECT_EQ(report["tuned"], report["defaults"]);
         EXPECT_EQ(lodopt::scheduler::loadCoefficients(out).importance.alpha1, 0.6);

@@ -189,14 +189,13 @@ public:
                         const metrics::MetricParameters& parameters);
     optimizer::Score evaluate(const optimizer::Combination& combination) override;
     std::vector<std::string> componentNames() const override {
-        return evaluation::componentNames(mParameters.computePrecisionRecall);
+        return evaluation::componentNames(mMetrics.parameters().computePrecisionRecall);
     }
     metrics::MetricResult metricsOf(const optimizer::Combination& combination);
 
 private:
     const ViewSetup& mSetup;
     renderer::Renderer& mRenderer;
-    metrics::MetricParameters mParameters;
     renderer::Frame mFrame;
     metrics::IncrementalEvaluator mMetrics;  // reused: setCandidate recomputes every pixel
 };
