@@ -49,6 +49,7 @@ struct ScheduleOptions {
     std::string switchControl;
     std::string switchRule = "hysteresis";
     double switchMargin = 0.05;
+    double switchRefill = 0.1;
     bool noFeedback = false;
     double beta = 0.3;
     int frames = 0;
@@ -86,6 +87,7 @@ nlohmann::json checkpointIdentity(const ScheduleOptions& o, const scheduler::Sch
             {"switch-control", o.switchControl},
             {"switch-rule", o.switchRule},
             {"switch-margin", o.switchMargin},
+            {"switch-refill", o.switchRefill},
             {"no-feedback", o.noFeedback},
             {"feedback-beta", o.beta},
             {"frames", o.frames},
@@ -214,6 +216,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     if (!options.switchControl.empty()) parseSwitchControl(options.switchControl, parameters.switchControl);
     parameters.switchControl.rule = parseSwitchRule(options.switchRule);
     parameters.switchControl.raiseMargin = options.switchMargin;
+    parameters.switchControl.refillBelow = options.switchRefill;
     parameters.feedback.beta = options.beta;
     const scheduler::FeatureMode mode = parseFeatureMode(options.features);
 
@@ -381,6 +384,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         {"switch_control", parameters.switchControl.enabled},
         {"switch_rule", scheduler::toString(parameters.switchControl.rule)},
         {"switch_margin", parameters.switchControl.raiseMargin},
+        {"switch_refill", parameters.switchControl.refillBelow},
         {"feedback", options.render && !options.noFeedback},
         {"frame_time", options.render ? nlohmann::json{{"statistic", options.frameTime}, {"draws", options.repeats}}
                                       : nlohmann::json(nullptr)},
@@ -489,6 +493,12 @@ void addScheduleCommand(CLI::App& app) {
     command
         ->add_option("--switch-margin", options->switchMargin,
                      "Hysteresis: a raise that switches an object only within (1 - M) of the budget")
+        ->check(CLI::Range(0.0, 0.99))
+        ->capture_default_str();
+    command
+        ->add_option("--switch-refill", options->switchRefill,
+                     "Hysteresis: a frame predicted under (1 - R) of the budget after the margin may switch into "
+                     "the whole budget (0: never)")
         ->check(CLI::Range(0.0, 0.99))
         ->capture_default_str();
     command->add_flag("--no-feedback", options->noFeedback, "With --render: do not correct the model");

@@ -257,6 +257,31 @@ void FrameScheduler::decideFlat() {
     FrameDecision& d = mDecision;
     const double budget = mParameters.budgetMs;
     const bool hysteresis = mParameters.switchControl.enabled && !mFilterControl.enabled && mHavePrevious;
+    decideFlatLevels(hysteresis);
+    // Refill: a frame the hysteresis left far under the budget (out of the ±10% band Goal 1
+    // asks for) may switch. Holding it there would save a switch at the cost of a frame that
+    // misses the band anyway. First raise into the whole budget from where it stands; if the
+    // coarse steps of a few large objects leave it out of the band still, take the decision
+    // without switch control when that comes nearer the budget (it may lower one object to
+    // raise another, which raising alone cannot).
+    const double refill = mParameters.switchControl.refillBelow;
+    const double bandFloor = budget * (1.0 - refill);
+    if (!hysteresis || refill <= 0.0 || estimate(d.features) >= bandFloor) return;
+    for (int o : w.order) raiseWhileFits(o, 0, budget);  // w.order: decreasing importance
+    const double raised = estimate(d.features);
+    if (raised >= bandFloor) return;
+    w.heldLevels.assign(d.levels.begin(), d.levels.end());
+    w.heldFeatures = d.features;
+    decideFlatLevels(false);
+    if (estimate(d.features) > raised) return;
+    std::copy(w.heldLevels.begin(), w.heldLevels.end(), d.levels.begin());
+    d.features = w.heldFeatures;
+}
+
+void FrameScheduler::decideFlatLevels(bool hysteresis) {
+    Work& w = *mWork;
+    FrameDecision& d = mDecision;
+    const double budget = mParameters.budgetMs;
     for (int o : w.visible) {
         // Hysteresis: an object with I <= 1 drawn coarser last frame starts there, so that its
         // distance level is a raise like any other (within the margin), not a switch for free.

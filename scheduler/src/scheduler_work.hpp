@@ -16,6 +16,8 @@ struct FrameScheduler::Work {
     std::vector<double> denominators;  // per entry of `visible`
     std::vector<double> scratch;
     timemodel::FrameFeatures trial;
+    std::vector<int> heldLevels;  // the refill's hysteresis decision, kept for comparison
+    timemodel::FrameFeatures heldFeatures;
 
     void reserve(std::size_t objects) {
         visible.reserve(objects);
@@ -24,6 +26,7 @@ struct FrameScheduler::Work {
         order.reserve(objects);
         denominators.reserve(objects);
         scratch.reserve(objects);
+        heldLevels.reserve(objects);
     }
 };
 

@@ -28,6 +28,8 @@ const char* toString(SwitchRule rule) {
 void validateSwitchControl(const SwitchControlParameters& p) {
     check(std::isfinite(p.raiseMargin) && p.raiseMargin >= 0.0 && p.raiseMargin < 1.0, "raiseMargin", p.raiseMargin,
           "in [0, 1)");
+    check(std::isfinite(p.refillBelow) && p.refillBelow >= 0.0 && p.refillBelow < 1.0, "refillBelow", p.refillBelow,
+          "in [0, 1)");
     check(std::isfinite(p.delta1) && p.delta1 > 0.0, "delta1", p.delta1, "finite and > 0");
     check(std::isfinite(p.k1) && p.k1 >= 0.0, "k1", p.k1, "finite and >= 0");
     check(std::isfinite(p.delta2) && p.delta2 >= 0.0, "delta2", p.delta2, "finite and >= 0");

@@ -386,6 +386,7 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
     EXPECT_EQ(summary["path"], "orbit");
     EXPECT_EQ(summary["switch_rule"], "hysteresis");  // the default (docs/scheduler.md, Goal 4)
     EXPECT_EQ(summary["switch_margin"].get<double>(), 0.05);
+    EXPECT_EQ(summary["switch_refill"].get<double>(), 0.1);
     EXPECT_GT(summary["decision_us"]["max"].get<double>(), 0.0);
     EXPECT_GT(summary["measured_ms"]["mean"].get<double>(), 0.0);
     EXPECT_GT(summary["fitness"]["mean"].get<double>(), 0.0);
@@ -436,6 +437,9 @@ TEST_F(SchedulerCli, BadInputExitsWithTwo) {
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-rule dwell" + common).exitCode,
               2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-margin 1" + common).exitCode, 2);
+    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-refill 1" + common).exitCode, 2);
+    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-refill -0.1" + common).exitCode,
+              2);
 }
 
 TEST_F(SchedulerCli, FrameTimeCanBeTheMedianOfTheDraws) {

@@ -21,7 +21,8 @@
 // DONG15 lowering, objects drawn finer last frame get back to that level (all the way or not
 // at all) in decreasing importance within the budget; the free raise then moves an object
 // drawn last frame only while the prediction stays within (1 − raiseMargin) of the budget
-// (entering objects: the whole budget). Nothing is held against the budget: no forced
+// (entering objects: the whole budget); a frame still under (1 − refillBelow) of the budget
+// then raises again into the whole budget (refill, switches allowed). Nothing is held against the budget: no forced
 // switches, no frozen objects.
 // Rule Vmi20 (VMI20 §7; tiles always) instead filters the decision: an object drawn in
 // the previous frame whose new level the control does not allow gets the allowed level nearest
@@ -158,6 +159,8 @@ private:
     void observeTiles();
     void computeImportanceAndRanges(double timeSeconds);
     void decideFlat();
+    // The flat decision (DONG15 lowering and raising), with the hysteresis passes or without.
+    void decideFlatLevels(bool hysteresis);
     void decideTiles();
     void applySwitchControl();
     // After the control's filter left budget over: raises objects in decreasing importance

@@ -4,8 +4,9 @@
 // (scheduler.hpp): a change of level costs a switch, so the decision prefers changes that cost
 // none (objects entering the view; going back to last frame's level) and makes a new raise
 // only within (1 − raiseMargin) of the budget, so that an object raised into spare budget is
-// not lowered again as soon as the frame costs a little more. Nothing is held against the
-// budget, so it never forces switches or freezes objects (docs/scheduler.md, Goal 4).
+// not lowered again as soon as the frame costs a little more; a frame the margin leaves
+// under (1 − refillBelow) of the budget may switch into the whole budget. Nothing is held
+// against the budget, so it never forces switches or freezes objects (docs/scheduler.md, Goal 4).
 //
 // SwitchRule::Vmi20, distance-dependent (VMI20 §7, method.md §7): an object changes level only
 // if
@@ -44,6 +45,11 @@ struct SwitchControlParameters {
     bool enabled = true;
     SwitchRule rule = SwitchRule::Hysteresis;
     double raiseMargin = 0.05;  // [0, 1): Hysteresis: new raises only within (1 − margin) · budget
+    // [0, 1): Hysteresis: a frame still predicted under (1 − refillBelow) · budget after the
+    // margin-limited raise raises again with the whole budget, switches allowed, so that the
+    // control never keeps a frame out of Goal 1's ±10% band when a switch would bring it in
+    // (a three-object scene's coarse steps land there often). 0: never.
+    double refillBelow = 0.1;
     // Vmi20 only:
     double delta1 = 1.0;        // > 0: Δrate bound at (dist − near) = 1
     double k1 = 0.5;            // >= 0: growth of the Δrate bound with distance
