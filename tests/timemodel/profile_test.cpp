@@ -117,6 +117,31 @@ TEST(Profile, WarnsWhenRendererSizeOrMachineDiffer) {
     EXPECT_EQ(timemodel::profileWarnings(profile, "NVIDIA / RTX", 512, 384, profile.machine).size(), 1u);
     EXPECT_EQ(timemodel::profileWarnings(profile, profile.glRenderer, 1024, 384, profile.machine).size(), 1u);
     EXPECT_EQ(timemodel::profileWarnings(profile, "", 512, 384, {"Other CPU", 64}).size(), 1u);
+    // llvmpipe's thread count: calibrated with LP_NUM_THREADS=1, used without it.
+    timemodel::DeviceProfile oneThread = profile;
+    oneThread.machine.llvmpipeThreads = "1";
+    const std::vector<std::string> warnings =
+        timemodel::profileWarnings(oneThread, profile.glRenderer, 512, 384, profile.machine);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("LP_NUM_THREADS 1, this process has unset"), std::string::npos) << warnings[0];
+    EXPECT_TRUE(timemodel::profileWarnings(oneThread, profile.glRenderer, 512, 384, oneThread.machine).empty());
+}
+
+TEST(Profile, RecordsTheRasterizerThreadsAndReadsOlderFilesWithout) {
+    timemodel::DeviceProfile profile = sampleProfile();
+    profile.machine.llvmpipeThreads = "1";
+    const std::string text = timemodel::profileToJson(profile);
+    EXPECT_EQ(timemodel::profileFromJson(text, "p.json").machine.llvmpipeThreads, "1");
+    // A profile written before the field existed: unset.
+    std::string older = text;
+    const std::string field = ",\n    \"lp_num_threads\": \"1\"";
+    const std::size_t at = older.find(field);
+    ASSERT_NE(at, std::string::npos) << text.substr(0, 400);
+    older.erase(at, field.size());
+    EXPECT_EQ(timemodel::profileFromJson(older, "p.json").machine.llvmpipeThreads, "");
+    std::string wrongType = text;
+    wrongType.replace(wrongType.find("\"lp_num_threads\": \"1\""), 23, "\"lp_num_threads\": 1");
+    EXPECT_NE(expectProfileError(wrongType).find("machine.lp_num_threads"), std::string::npos);
 }
 
 TEST(Profile, DescribesThisMachine) {

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <ctime>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -98,6 +99,7 @@ MachineDescription describeMachine() {
         }
     }
     machine.cores = static_cast<int>(std::thread::hardware_concurrency());
+    if (const char* threads = std::getenv("LP_NUM_THREADS")) machine.llvmpipeThreads = threads;
     return machine;
 }
 
@@ -149,7 +151,10 @@ std::string profileToJson(const DeviceProfile& profile) {
         {"format", kFormat},
         {"version", kVersion},
         {"created", profile.created},
-        {"machine", {{"cpu_model", profile.machine.cpuModel}, {"cores", profile.machine.cores}}},
+        {"machine",
+         {{"cpu_model", profile.machine.cpuModel},
+          {"cores", profile.machine.cores},
+          {"lp_num_threads", profile.machine.llvmpipeThreads}}},
         {"renderer", {{"gl_renderer", profile.glRenderer}, {"gl_version", profile.glVersion}}},
         {"render_size", {{"width", profile.width}, {"height", profile.height}}},
         {"scene", {{"name", profile.scene}, {"seed", profile.sceneSeed}}},
@@ -203,6 +208,10 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
     const Json& machine = read.field(document, "machine", "document");
     profile.machine.cpuModel = read.text(machine, "cpu_model", "machine");
     profile.machine.cores = static_cast<int>(read.integer(machine, "cores", "machine"));
+    // Optional: profiles written before it was recorded ran with it unset.
+    if (machine.contains("lp_num_threads")) {
+        profile.machine.llvmpipeThreads = read.text(machine, "lp_num_threads", "machine");
+    }
     const Json& renderer = read.field(document, "renderer", "document");
     profile.glRenderer = read.text(renderer, "gl_renderer", "renderer");
     profile.glVersion = read.text(renderer, "gl_version", "renderer");
@@ -344,6 +353,12 @@ std::vector<std::string> profileWarnings(const DeviceProfile& profile, const std
         warnings.push_back("the profile was measured on '" + profile.machine.cpuModel + "' with " +
                            std::to_string(profile.machine.cores) + " threads, this is '" + machine.cpuModel +
                            "' with " + std::to_string(machine.cores));
+    }
+    if (machine.llvmpipeThreads != profile.machine.llvmpipeThreads) {
+        const auto shown = [](const std::string& value) { return value.empty() ? std::string("unset") : value; };
+        warnings.push_back("the profile was measured with LP_NUM_THREADS " + shown(profile.machine.llvmpipeThreads) +
+                           ", this process has " + shown(machine.llvmpipeThreads) +
+                           ": llvmpipe's thread count changes frame times");
     }
     return warnings;
 }

@@ -28,6 +28,9 @@ public:
 struct MachineDescription {
     std::string cpuModel;  // /proc/cpuinfo "model name", "unknown" when unreadable
     int cores = 0;         // hardware threads
+    // LP_NUM_THREADS as this process has it ("" when unset: llvmpipe rasterizes on one thread
+    // per core). It changes frame times, most on small frames (docs/timemodel.md "Limits").
+    std::string llvmpipeThreads;
 };
 // The machine this process runs on.
 MachineDescription describeMachine();
