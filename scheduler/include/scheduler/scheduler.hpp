@@ -21,9 +21,10 @@
 // DONG15 lowering, objects drawn finer last frame get back to that level (all the way or not
 // at all) in decreasing importance within the budget; the free raise then moves an object
 // drawn last frame only while the prediction stays within (1 − raiseMargin) of the budget
-// (entering objects: the whole budget); a frame still under (1 − refillBelow) of the budget
-// then raises again into the whole budget (refill, switches allowed). Nothing is held against the budget: no forced
-// switches, no frozen objects.
+// (entering objects: the whole budget). Refill: a frame still under (1 − refillBelow) of the
+// budget then raises again into the whole budget, switches allowed, and if still under, takes
+// the decision without switch control when that is nearer the budget. Nothing is held against
+// the budget: no forced switches, no frozen objects.
 // Rule Vmi20 (VMI20 §7; tiles always) instead filters the decision: an object drawn in
 // the previous frame whose new level the control does not allow gets the allowed level nearest
 // to the decision's (its old level while its dwell time runs). If the held objects push the

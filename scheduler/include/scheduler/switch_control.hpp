@@ -46,9 +46,10 @@ struct SwitchControlParameters {
     SwitchRule rule = SwitchRule::Hysteresis;
     double raiseMargin = 0.05;  // [0, 1): Hysteresis: new raises only within (1 − margin) · budget
     // [0, 1): Hysteresis: a frame still predicted under (1 − refillBelow) · budget after the
-    // margin-limited raise raises again with the whole budget, switches allowed, so that the
-    // control never keeps a frame out of Goal 1's ±10% band when a switch would bring it in
-    // (a three-object scene's coarse steps land there often). 0: never.
+    // margin-limited raise raises again with the whole budget, switches allowed, and if still
+    // under takes the decision without switch control when that is nearer the budget, so that
+    // the control does not keep a frame out of Goal 1's ±10% band when switches would bring it
+    // in (a three-object scene's coarse steps land there often). 0: never.
     double refillBelow = 0.1;
     // Vmi20 only:
     double delta1 = 1.0;        // > 0: Δrate bound at (dist − near) = 1
