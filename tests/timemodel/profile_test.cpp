@@ -140,7 +140,8 @@ TEST(Profile, RecordsTheRasterizerThreadsAndReadsOlderFilesWithout) {
     older.erase(at, field.size());
     EXPECT_EQ(timemodel::profileFromJson(older, "p.json").machine.llvmpipeThreads, "");
     std::string wrongType = text;
-    wrongType.replace(wrongType.find("\"lp_num_threads\": \"1\""), 23, "\"lp_num_threads\": 1");
+    const std::string asText = "\"lp_num_threads\": \"1\"";
+    wrongType.replace(wrongType.find(asText), asText.size(), "\"lp_num_threads\": 1");
     EXPECT_NE(expectProfileError(wrongType).find("machine.lp_num_threads"), std::string::npos);
 }
 
