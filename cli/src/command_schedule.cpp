@@ -48,8 +48,9 @@ struct ScheduleOptions {
     bool noSwitchControl = false;
     std::string switchControl;
     std::string switchRule = "hysteresis";
-    double switchMargin = 0.05;
-    double switchRefill = 0.1;
+    // The library's defaults, so that the CLI cannot drift from them.
+    double switchMargin = scheduler::SwitchControlParameters{}.raiseMargin;
+    double switchRefill = scheduler::SwitchControlParameters{}.refillBelow;
     bool noFeedback = false;
     double beta = 0.3;
     int frames = 0;
