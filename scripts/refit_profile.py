@@ -16,7 +16,8 @@ import sys
 import numpy as np
 
 DEFAULT = ['vertices', 'triangles', 'texture_bytes', 'draw_calls', 'pixels', 'drawn_objects',
-           'visible_triangles', 'raster_pixels', 'edge_pixels', 'shaded_pixels']
+           'visible_triangles', 'raster_pixels', 'edge_pixels', 'shaded_pixels', 'textured_pixels',
+           'shaded_edge_pixels']
 
 
 def nnls(a, b, sweeps=3000):
@@ -47,6 +48,7 @@ def evaluate(profile, columns):
     t = np.array([s['wall_min_ms'] for s in samples])
     held = np.array([s['held_out'] for s in samples])
     view = np.array([s['viewpoint'] for s in samples])
+    columns = [c for c in columns if c in names]  # profiles older than a feature lack it
     design = np.column_stack([np.ones(len(t))] + [x[:, names.index(c)] for c in columns])
     error = np.abs(predict(design, t, ~held) - t) / t
     cv = []
@@ -60,9 +62,10 @@ def evaluate(profile, columns):
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
-    variants = [('default', DEFAULT)] + [('without ' + c, [d for d in DEFAULT if d != c]) for c in DEFAULT]
     for path in sys.argv[1:]:
         profile = json.load(open(path))
+        present = [c for c in DEFAULT if c in profile['feature_names']]
+        variants = [('default', present)] + [('without ' + c, [d for d in present if d != c]) for c in present]
         print(path)
         for label, columns in variants:
             m, p90, cvm, cvp90 = evaluate(profile, columns)

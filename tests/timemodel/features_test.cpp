@@ -228,3 +228,76 @@ TEST(FeatureTable, ShadedPixelsFollowTheDepthTestInDrawOrder) {
         EXPECT_NEAR(table.contribution(1, 0)[Feature::kShadedPixels], screen, 1.0);
     }
 }
+
+namespace {
+
+// A far object made of a textured left half and a plain right half (z = -4), and a plain
+// screen-filling near quad (z = -2); `farFirst` puts the far object first in draw order.
+scenes::Scene halfTexturedBehindAQuad(bool farFirst) {
+    scenes::Scene scene;
+    scene.name = "half_textured";
+    scenes::Texture texture;
+    texture.name = "t";
+    texture.width = texture.height = 2;
+    texture.rgba.assign(2 * 2 * 4, 128);
+    scene.textures.push_back(texture);
+    scene.materials.push_back(scenes::Material{"plain", glm::vec4(1.0f), -1});
+    scene.materials.push_back(scenes::Material{"textured", glm::vec4(1.0f), 0});
+    scenes::Object far;
+    far.name = "far";
+    {
+        scenes::Level level;
+        scenes::MeshBuilder left(1), right(0);
+        left.addQuad({-10, -10, -4}, {0, -10, -4}, {0, 10, -4}, {-10, 10, -4});
+        right.addQuad({0, -10, -4}, {10, -10, -4}, {10, 10, -4}, {0, 10, -4});
+        level.meshes.push_back(left.finish());
+        level.meshes.push_back(right.finish());
+        far.levels.push_back(std::move(level));
+    }
+    scenes::Object near;
+    near.name = "near";
+    {
+        scenes::Level level;
+        scenes::MeshBuilder quad(0);
+        quad.addQuad({-10, -10, -2}, {10, -10, -2}, {10, 10, -2}, {-10, 10, -2});
+        level.meshes.push_back(quad.finish());
+        near.levels.push_back(std::move(level));
+    }
+    if (farFirst) {
+        scene.objects.push_back(std::move(far));
+        scene.objects.push_back(std::move(near));
+    } else {
+        scene.objects.push_back(std::move(near));
+        scene.objects.push_back(std::move(far));
+    }
+    scene.views.push_back(straightCamera());
+    scenes::updateStatistics(scene);
+    return scene;
+}
+
+}  // namespace
+
+TEST(FeatureTable, TexturedPixelsAndShadedEdgesFollowTheMaterialsAndTheDepthTest) {
+    const double screen = 100.0 * 100.0;
+    {
+        // Far object first: all its fragments pass; half of them are textured.
+        const scenes::Scene scene = halfTexturedBehindAQuad(true);
+        const timemodel::FeatureTable table(scene, scene.views[0], 100, 100);
+        const timemodel::FrameFeatures& far = table.contribution(0, 0);
+        EXPECT_NEAR(far[Feature::kShadedPixels], screen, 1.0);
+        EXPECT_NEAR(far[Feature::kTexturedPixels], 0.5 * screen, 1.0);
+        EXPECT_GT(far[Feature::kEdgePixels], 100.0);  // the diagonals and the seam
+        EXPECT_NEAR(far[Feature::kShadedEdgePixels], far[Feature::kEdgePixels], 1e-6 * far[Feature::kEdgePixels]);
+        EXPECT_EQ(table.contribution(1, 0)[Feature::kTexturedPixels], 0.0);  // plain material
+    }
+    {
+        // Near quad first: the far object is rasterized in full but fails the depth test, so it
+        // shades (and samples its texture) almost nowhere, along its edges included.
+        const scenes::Scene scene = halfTexturedBehindAQuad(false);
+        const timemodel::FeatureTable table(scene, scene.views[0], 100, 100);
+        const timemodel::FrameFeatures& far = table.contribution(1, 0);
+        EXPECT_NEAR(far[Feature::kRasterPixels], screen, 1.0);
+        EXPECT_LT(far[Feature::kTexturedPixels], 0.01 * screen);
+        EXPECT_LT(far[Feature::kShadedEdgePixels], 0.01 * far[Feature::kEdgePixels]);
+    }
+}

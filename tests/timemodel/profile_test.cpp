@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "scenes/builtin.hpp"
 #include "timemodel/estimator.hpp"
@@ -31,7 +33,7 @@ timemodel::DeviceProfile sampleProfile() {
     }
     timemodel::DeviceProfile profile;
     profile.created = "2024-01-02T03:04:05Z";
-    profile.machine = {"Test CPU", 2};
+    profile.machine = {"Test CPU", 2, ""};
     profile.glRenderer = "Mesa / llvmpipe (LLVM 15.0.6, 256 bits)";
     profile.glVersion = "4.5 (Core Profile) Mesa 22.3.6";
     profile.width = 512;
@@ -116,7 +118,7 @@ TEST(Profile, WarnsWhenRendererSizeOrMachineDiffer) {
     EXPECT_TRUE(timemodel::profileWarnings(profile, profile.glRenderer, 512, 384, profile.machine).empty());
     EXPECT_EQ(timemodel::profileWarnings(profile, "NVIDIA / RTX", 512, 384, profile.machine).size(), 1u);
     EXPECT_EQ(timemodel::profileWarnings(profile, profile.glRenderer, 1024, 384, profile.machine).size(), 1u);
-    EXPECT_EQ(timemodel::profileWarnings(profile, "", 512, 384, {"Other CPU", 64}).size(), 1u);
+    EXPECT_EQ(timemodel::profileWarnings(profile, "", 512, 384, {"Other CPU", 64, ""}).size(), 1u);
     // llvmpipe's thread count: calibrated with LP_NUM_THREADS=1, used without it.
     timemodel::DeviceProfile oneThread = profile;
     oneThread.machine.llvmpipeThreads = "1";
@@ -143,6 +145,68 @@ TEST(Profile, RecordsTheRasterizerThreadsAndReadsOlderFilesWithout) {
     const std::string asText = "\"lp_num_threads\": \"1\"";
     wrongType.replace(wrongType.find(asText), asText.size(), "\"lp_num_threads\": 1");
     EXPECT_NE(expectProfileError(wrongType).find("machine.lp_num_threads"), std::string::npos);
+}
+
+TEST(Profile, ReadsFilesWrittenBeforeTheTexturedAndShadedEdgeFeatures) {
+    const timemodel::DeviceProfile profile = sampleProfile();
+    nlohmann::json document = nlohmann::json::parse(timemodel::profileToJson(profile));
+    // What such a file looked like: the two newest features absent everywhere.
+    const std::vector<std::string> newer = {"textured_pixels", "shaded_edge_pixels"};
+    std::vector<std::size_t> positions;
+    nlohmann::json names = nlohmann::json::array();
+    for (std::size_t i = 0; i < document["feature_names"].size(); ++i) {
+        const std::string name = document["feature_names"][i];
+        if (std::find(newer.begin(), newer.end(), name) != newer.end()) positions.push_back(i);
+        else names.push_back(name);
+    }
+    ASSERT_EQ(positions.size(), newer.size());
+    document["feature_names"] = names;
+    for (auto& model : document["models"]) {
+        for (const std::string& name : newer) model["coefficients"].erase(name);
+    }
+    for (auto& sample : document["samples"]) {
+        nlohmann::json kept = nlohmann::json::array();
+        for (std::size_t i = 0; i < sample["features"].size(); ++i) {
+            if (std::find(positions.begin(), positions.end(), i) == positions.end()) kept.push_back(sample["features"][i]);
+        }
+        sample["features"] = kept;
+    }
+    const timemodel::DeviceProfile older = timemodel::profileFromJson(document.dump(), "older.json");
+    ASSERT_EQ(older.samples.size(), profile.samples.size());
+    for (std::size_t i = 0; i < older.samples.size(); ++i) {
+        for (timemodel::Feature feature : timemodel::allFeatures()) {
+            const bool isNewer = feature == timemodel::Feature::kTexturedPixels ||
+                                 feature == timemodel::Feature::kShadedEdgePixels;
+            EXPECT_EQ(older.samples[i].sample.features[feature],
+                      isNewer ? 0.0 : profile.samples[i].sample.features[feature])
+                << timemodel::featureName(feature);
+        }
+    }
+    // The linear model reads the absent coefficients as 0 and keeps the others.
+    const auto find = [](const timemodel::DeviceProfile& p) {
+        for (const auto& model : p.models) {
+            if (model.name == "linear") return model;
+        }
+        return timemodel::ModelResult{};
+    };
+    const timemodel::ModelResult before = find(profile), after = find(older);
+    ASSERT_EQ(after.coefficients.size(), before.coefficients.size());
+    for (std::size_t k = 0; k < after.coefficientNames.size(); ++k) {
+        const std::string& name = after.coefficientNames[k];
+        const bool isNewer = std::find(newer.begin(), newer.end(), name) != newer.end();
+        EXPECT_EQ(after.coefficients[k], isNewer ? 0.0 : before.coefficients[k]) << name;
+    }
+    // A name it does not know, or one listed twice, is an error naming the entry.
+    nlohmann::json unknown = document;
+    unknown["feature_names"][0] = "polygons";
+    EXPECT_NE(expectProfileError(unknown.dump()).find("feature_names[0]: unknown feature 'polygons'"), std::string::npos);
+    nlohmann::json twice = document;
+    twice["feature_names"][1] = twice["feature_names"][0];
+    EXPECT_NE(expectProfileError(twice.dump()).find("listed twice"), std::string::npos);
+    // A sample with a value per feature of another version is an error too.
+    nlohmann::json shortSample = document;
+    shortSample["samples"][0]["features"].erase(0);
+    EXPECT_NE(expectProfileError(shortSample.dump()).find("samples[0].features"), std::string::npos);
 }
 
 TEST(Profile, DescribesThisMachine) {

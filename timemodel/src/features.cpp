@@ -37,6 +37,10 @@ const char* featureName(Feature feature) {
             return "edge_pixels";
         case Feature::kShadedPixels:
             return "shaded_pixels";
+        case Feature::kTexturedPixels:
+            return "textured_pixels";
+        case Feature::kShadedEdgePixels:
+            return "shaded_edge_pixels";
     }
     return "unknown";
 }
@@ -45,7 +49,8 @@ const std::array<Feature, kFeatureCount>& allFeatures() {
     static const std::array<Feature, kFeatureCount> features = {
         Feature::kVertices,         Feature::kTriangles,    Feature::kTextureBytes, Feature::kDrawCalls,
         Feature::kPixels,           Feature::kDrawnObjects, Feature::kMatrices,     Feature::kBoundingBoxes,
-        Feature::kVisibleTriangles, Feature::kRasterPixels, Feature::kEdgePixels,   Feature::kShadedPixels};
+        Feature::kVisibleTriangles, Feature::kRasterPixels, Feature::kEdgePixels,   Feature::kShadedPixels,
+        Feature::kTexturedPixels,   Feature::kShadedEdgePixels};
     return features;
 }
 
@@ -132,8 +137,12 @@ double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& mode
 
 namespace {
 
-FrameFeatures levelContribution(const scenes::Level& level, const glm::mat4& modelViewProjection, int width, int height,
-                                double depthPassShare) {
+bool textured(const std::vector<scenes::Material>& materials, int material) {
+    return material >= 0 && std::size_t(material) < materials.size() && materials[material].baseColorTexture >= 0;
+}
+
+FrameFeatures levelContribution(const scenes::Level& level, const std::vector<scenes::Material>& materials,
+                                const glm::mat4& modelViewProjection, int width, int height, double depthPassShare) {
     const scenes::LevelStats& stats = level.stats;
     FrameFeatures f;
     f[Feature::kVertices] = double(stats.vertices);
@@ -143,11 +152,21 @@ FrameFeatures levelContribution(const scenes::Level& level, const glm::mat4& mod
     f[Feature::kPixels] = projectedPixels(stats.bounds, modelViewProjection, width, height);
     f[Feature::kDrawnObjects] = 1.0;
     f[Feature::kMatrices] = 1.0;
-    const RasterFeatures raster = rasterFeatures(level.meshes, modelViewProjection, width, height);
+    // One running sum over the meshes (the same bits as rasterFeatures of the level); the
+    // textured meshes' share is what their turns added.
+    RasterFeatures raster;
+    double texturedRaster = 0.0;
+    for (const scenes::Mesh& mesh : level.meshes) {
+        const double before = raster.rasterPixels;
+        addRasterFeatures(mesh, modelViewProjection, width, height, raster);
+        if (textured(materials, mesh.material)) texturedRaster += raster.rasterPixels - before;
+    }
     f[Feature::kVisibleTriangles] = raster.visibleTriangles;
     f[Feature::kRasterPixels] = raster.rasterPixels;
     f[Feature::kEdgePixels] = raster.edgePixels;
     f[Feature::kShadedPixels] = raster.rasterPixels * depthPassShare;
+    f[Feature::kTexturedPixels] = texturedRaster * depthPassShare;
+    f[Feature::kShadedEdgePixels] = raster.edgePixels * depthPassShare;
     return f;
 }
 
@@ -167,7 +186,7 @@ FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& cam
         mFirstLevel.push_back(static_cast<int>(mContributions.size()));
         const glm::mat4 modelViewProjection = viewProjection * object.transform;
         for (const scenes::Level& level : object.levels) {
-            mContributions.push_back(levelContribution(level, modelViewProjection, width, height, shares[o]));
+            mContributions.push_back(levelContribution(level, scene.materials, modelViewProjection, width, height, shares[o]));
         }
     }
     mFirstLevel.push_back(static_cast<int>(mContributions.size()));  // end sentinel
@@ -217,7 +236,7 @@ FrameFeatures computeFrameFeatures(const scenes::Scene& scene, const scenes::Com
         const int level = combination[o];
         if (level == scenes::kNotDrawn) continue;
         const scenes::Object& object = scene.objects[o];
-        out += levelContribution(object.levels[level], viewProjection * object.transform, width, height, shares[o]);
+        out += levelContribution(object.levels[level], scene.materials, viewProjection * object.transform, width, height, shares[o]);
     }
     return out;
 }

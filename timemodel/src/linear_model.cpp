@@ -35,6 +35,8 @@ FitReport LinearModel::fitValidated(const std::vector<Sample>& samples) {
     const std::vector<std::size_t> order = {0,
                                             column(Feature::kVisibleTriangles),
                                             column(Feature::kShadedPixels),
+                                            column(Feature::kTexturedPixels),
+                                            column(Feature::kShadedEdgePixels),
                                             column(Feature::kEdgePixels),
                                             column(Feature::kRasterPixels),
                                             column(Feature::kTriangles),

@@ -236,6 +236,36 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
     profile.timing.seconds = read.number(timing, "seconds", "calibration.timing");
     profile.defaultModel = read.text(document, "default_model", "document");
 
+    // Features by name: a profile written before a feature existed lacks it, and its
+    // coefficients and samples read it as 0 (the model was fitted without it).
+    std::vector<int> fileFeatures;  // file position -> Feature index
+    std::vector<bool> inFile(kFeatureCount, false);
+    if (document.contains("feature_names")) {
+        const Json& names = document["feature_names"];
+        if (!names.is_array()) read.fail("feature_names", "expected an array of names");
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            if (!names[i].is_string()) read.fail("feature_names", "expected an array of names");
+            const std::string name = names[i].get<std::string>();
+            int found = -1;
+            for (Feature feature : allFeatures()) {
+                if (name == featureName(feature)) found = static_cast<int>(feature);
+            }
+            if (found < 0) read.fail("feature_names[" + std::to_string(i) + "]", "unknown feature '" + name + "'");
+            if (inFile[found]) read.fail("feature_names[" + std::to_string(i) + "]", "'" + name + "' listed twice");
+            inFile[found] = true;
+            fileFeatures.push_back(found);
+        }
+    } else {
+        for (Feature feature : allFeatures()) fileFeatures.push_back(static_cast<int>(feature));
+        inFile.assign(kFeatureCount, true);
+    }
+    auto absentFeature = [&](const std::string& coefficient) {
+        for (Feature feature : allFeatures()) {
+            if (coefficient == featureName(feature)) return !inFile[static_cast<std::size_t>(feature)];
+        }
+        return false;
+    };
+
     const Json& models = read.field(document, "models", "document");
     if (!models.is_array()) read.fail("models", "expected an array");
     for (std::size_t m = 0; m < models.size(); ++m) {
@@ -257,7 +287,8 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
         const Json& coefficients = read.field(entry, "coefficients", at);
         if (result.fitted) {
             for (const std::string& name : result.coefficientNames) {
-                result.coefficients.push_back(read.number(coefficients, name, at + ".coefficients"));
+                const bool absent = absentFeature(name) && coefficients.is_object() && !coefficients.contains(name);
+                result.coefficients.push_back(absent ? 0.0 : read.number(coefficients, name, at + ".coefficients"));
             }
             try {
                 model->setCoefficients(result.coefficients);  // checks finiteness
@@ -295,12 +326,13 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
             if (samples[i].contains("wall_median_ms")) s.wallMedianMs = read.number(samples[i], "wall_median_ms", at);
             if (samples[i].contains("cpu_ms")) s.cpuMs = read.number(samples[i], "cpu_ms", at);
             const Json& features = read.field(samples[i], "features", at);
-            if (!features.is_array() || features.size() != kFeatureCount) {
-                read.fail(at + ".features", "expected " + std::to_string(kFeatureCount) + " numbers");
+            if (!features.is_array() || features.size() != fileFeatures.size()) {
+                read.fail(at + ".features", "expected " + std::to_string(fileFeatures.size()) +
+                                                " numbers, one per feature_names entry");
             }
-            for (std::size_t k = 0; k < kFeatureCount; ++k) {
+            for (std::size_t k = 0; k < fileFeatures.size(); ++k) {
                 if (!features[k].is_number()) read.fail(at + ".features", "expected numbers");
-                s.sample.features.values[k] = features[k].get<double>();
+                s.sample.features.values[std::size_t(fileFeatures[k])] = features[k].get<double>();
             }
             profile.samples.push_back(s);
         }

@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "timemodel/features.hpp"
 
@@ -81,27 +82,29 @@ double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::v
 
 }  // namespace
 
+void addRasterFeatures(const scenes::Mesh& mesh, const glm::mat4& modelViewProjection, int width, int height,
+                       RasterFeatures& sum) {
+    assert(width > 0 && height > 0);
+    thread_local std::vector<glm::vec4> clip;
+    thread_local std::vector<std::uint8_t> codes;
+    clip.resize(mesh.positions.size());
+    codes.resize(mesh.positions.size());
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        clip[v] = modelViewProjection * glm::vec4(mesh.positions[v], 1.0f);
+        codes[v] = outcode(clip[v]);
+    }
+    for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const std::uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
+        if (codes[a] & codes[b] & codes[c]) continue;  // trivially outside one plane
+        sum.visibleTriangles += 1.0;
+        sum.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height, sum.edgePixels);
+    }
+}
+
 RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
                               int height) {
-    assert(width > 0 && height > 0);
     RasterFeatures result;
-    std::vector<glm::vec4> clip;
-    std::vector<std::uint8_t> codes;
-    for (const scenes::Mesh& mesh : meshes) {
-        clip.resize(mesh.positions.size());
-        codes.resize(mesh.positions.size());
-        for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-            clip[v] = modelViewProjection * glm::vec4(mesh.positions[v], 1.0f);
-            codes[v] = outcode(clip[v]);
-        }
-        for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
-            const std::uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
-            if (codes[a] & codes[b] & codes[c]) continue;  // trivially outside one plane
-            result.visibleTriangles += 1.0;
-            result.rasterPixels +=
-                triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height, result.edgePixels);
-        }
-    }
+    for (const scenes::Mesh& mesh : meshes) addRasterFeatures(mesh, modelViewProjection, width, height, result);
     return result;
 }
 

@@ -20,7 +20,13 @@
 //   edge pixels      — the length of their clipped edges inside the viewport: partial blocks;
 //   shaded pixels    — raster pixels times the share of the object's fragments that pass the
 //                      depth test in the reference frame drawn in object order (a 128-cell
-//                      software depth pass): early depth testing skips the hidden ones.
+//                      software depth pass): early depth testing skips the hidden ones;
+//   textured pixels  — the part of the shaded pixels drawn with a base-color texture: the
+//                      trilinear fetch makes such a fragment cost 2–2.7 times an untextured
+//                      one, and a depth-failed fragment costs a fifth to a tenth of either
+//                      (bench/renderer_bench, docs/timemodel.md "Overdraw probe");
+//   shaded edge pixels — edge pixels times the same depth-pass share: the partial blocks along
+//                      edges are cheap too where the depth test fails.
 // These walk the geometry once per (object, level) when a table is built.
 //
 // A FeatureTable precomputes each (object, level) contribution for one viewpoint and render
@@ -51,8 +57,11 @@ enum class Feature : int {
     kRasterPixels,
     kEdgePixels,
     kShadedPixels,
+    // Added after the first profiles: older files lack them (read as 0).
+    kTexturedPixels,
+    kShadedEdgePixels,
 };
-inline constexpr std::size_t kFeatureCount = 12;
+inline constexpr std::size_t kFeatureCount = 14;
 
 // Stable snake_case name ("vertices", "texture_bytes", ...), used in profiles and tables.
 const char* featureName(Feature feature);
@@ -88,6 +97,9 @@ struct RasterFeatures {
 };
 RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
                               int height);
+// Adds one mesh's raster features to `sum` (the vector form is this over its meshes, in order).
+void addRasterFeatures(const scenes::Mesh& mesh, const glm::mat4& modelViewProjection, int width, int height,
+                       RasterFeatures& sum);
 
 // Per-viewpoint table of feature contributions: build once per (scene, camera, size), then
 // query combinations. Holds no reference to the scene after construction. Building walks
