@@ -34,7 +34,8 @@ scenes::Mesh gridQuad(float z, int sub, float half) {
     }
     for (int j = 0; j < sub; ++j) {
         for (int i = 0; i < sub; ++i) {
-            const std::uint32_t a = std::uint32_t(j * (sub + 1) + i), b = a + 1, c = a + std::uint32_t(sub) + 1, d = c + 1;
+            const std::uint32_t a = std::uint32_t(j * (sub + 1) + i), b = a + 1, c = a + std::uint32_t(sub) + 1,
+                                d = c + 1;
             mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
         }
     }

@@ -156,8 +156,10 @@ TEST(Profile, ReadsFilesWrittenBeforeTheTexturedAndShadedEdgeFeatures) {
     nlohmann::json names = nlohmann::json::array();
     for (std::size_t i = 0; i < document["feature_names"].size(); ++i) {
         const std::string name = document["feature_names"][i];
-        if (std::find(newer.begin(), newer.end(), name) != newer.end()) positions.push_back(i);
-        else names.push_back(name);
+        if (std::find(newer.begin(), newer.end(), name) != newer.end())
+            positions.push_back(i);
+        else
+            names.push_back(name);
     }
     ASSERT_EQ(positions.size(), newer.size());
     document["feature_names"] = names;
@@ -167,7 +169,8 @@ TEST(Profile, ReadsFilesWrittenBeforeTheTexturedAndShadedEdgeFeatures) {
     for (auto& sample : document["samples"]) {
         nlohmann::json kept = nlohmann::json::array();
         for (std::size_t i = 0; i < sample["features"].size(); ++i) {
-            if (std::find(positions.begin(), positions.end(), i) == positions.end()) kept.push_back(sample["features"][i]);
+            if (std::find(positions.begin(), positions.end(), i) == positions.end())
+                kept.push_back(sample["features"][i]);
         }
         sample["features"] = kept;
     }
@@ -175,8 +178,8 @@ TEST(Profile, ReadsFilesWrittenBeforeTheTexturedAndShadedEdgeFeatures) {
     ASSERT_EQ(older.samples.size(), profile.samples.size());
     for (std::size_t i = 0; i < older.samples.size(); ++i) {
         for (timemodel::Feature feature : timemodel::allFeatures()) {
-            const bool isNewer = feature == timemodel::Feature::kTexturedPixels ||
-                                 feature == timemodel::Feature::kShadedEdgePixels;
+            const bool isNewer =
+                feature == timemodel::Feature::kTexturedPixels || feature == timemodel::Feature::kShadedEdgePixels;
             EXPECT_EQ(older.samples[i].sample.features[feature],
                       isNewer ? 0.0 : profile.samples[i].sample.features[feature])
                 << timemodel::featureName(feature);
@@ -199,7 +202,8 @@ TEST(Profile, ReadsFilesWrittenBeforeTheTexturedAndShadedEdgeFeatures) {
     // A name it does not know, or one listed twice, is an error naming the entry.
     nlohmann::json unknown = document;
     unknown["feature_names"][0] = "polygons";
-    EXPECT_NE(expectProfileError(unknown.dump()).find("feature_names[0]: unknown feature 'polygons'"), std::string::npos);
+    EXPECT_NE(expectProfileError(unknown.dump()).find("feature_names[0]: unknown feature 'polygons'"),
+              std::string::npos);
     nlohmann::json twice = document;
     twice["feature_names"][1] = twice["feature_names"][0];
     EXPECT_NE(expectProfileError(twice.dump()).find("listed twice"), std::string::npos);

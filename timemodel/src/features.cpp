@@ -47,9 +47,9 @@ const char* featureName(Feature feature) {
 
 const std::array<Feature, kFeatureCount>& allFeatures() {
     static const std::array<Feature, kFeatureCount> features = {
-        Feature::kVertices,         Feature::kTriangles,    Feature::kTextureBytes, Feature::kDrawCalls,
-        Feature::kPixels,           Feature::kDrawnObjects, Feature::kMatrices,     Feature::kBoundingBoxes,
-        Feature::kVisibleTriangles, Feature::kRasterPixels, Feature::kEdgePixels,   Feature::kShadedPixels,
+        Feature::kVertices,         Feature::kTriangles,       Feature::kTextureBytes, Feature::kDrawCalls,
+        Feature::kPixels,           Feature::kDrawnObjects,    Feature::kMatrices,     Feature::kBoundingBoxes,
+        Feature::kVisibleTriangles, Feature::kRasterPixels,    Feature::kEdgePixels,   Feature::kShadedPixels,
         Feature::kTexturedPixels,   Feature::kShadedEdgePixels};
     return features;
 }
@@ -186,7 +186,8 @@ FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& cam
         mFirstLevel.push_back(static_cast<int>(mContributions.size()));
         const glm::mat4 modelViewProjection = viewProjection * object.transform;
         for (const scenes::Level& level : object.levels) {
-            mContributions.push_back(levelContribution(level, scene.materials, modelViewProjection, width, height, shares[o]));
+            mContributions.push_back(
+                levelContribution(level, scene.materials, modelViewProjection, width, height, shares[o]));
         }
     }
     mFirstLevel.push_back(static_cast<int>(mContributions.size()));  // end sentinel
@@ -236,7 +237,8 @@ FrameFeatures computeFrameFeatures(const scenes::Scene& scene, const scenes::Com
         const int level = combination[o];
         if (level == scenes::kNotDrawn) continue;
         const scenes::Object& object = scene.objects[o];
-        out += levelContribution(object.levels[level], scene.materials, viewProjection * object.transform, width, height, shares[o]);
+        out += levelContribution(object.levels[level], scene.materials, viewProjection * object.transform, width,
+                                 height, shares[o]);
     }
     return out;
 }

@@ -2,8 +2,8 @@
 #include "timemodel/profile.hpp"
 
 #include <chrono>
-#include <ctime>
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -327,8 +327,8 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
             if (samples[i].contains("cpu_ms")) s.cpuMs = read.number(samples[i], "cpu_ms", at);
             const Json& features = read.field(samples[i], "features", at);
             if (!features.is_array() || features.size() != fileFeatures.size()) {
-                read.fail(at + ".features", "expected " + std::to_string(fileFeatures.size()) +
-                                                " numbers, one per feature_names entry");
+                read.fail(at + ".features",
+                          "expected " + std::to_string(fileFeatures.size()) + " numbers, one per feature_names entry");
             }
             for (std::size_t k = 0; k < fileFeatures.size(); ++k) {
                 if (!features[k].is_number()) read.fail(at + ".features", "expected numbers");
