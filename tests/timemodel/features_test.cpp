@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scenes/mesh_builder.hpp"
@@ -187,20 +189,30 @@ TEST(RasterFeatures, TrianglesOutsideTheFrustumAreNotVisible) {
 
 namespace {
 
+// The rectangle [x0, x1] x [-10, 10] in the plane z, facing the straight camera, far larger
+// than its view at z = -2 or -4 when it spans x in [-10, 10].
+scenes::Mesh quadMesh(float x0, float x1, float z, int material = -1) {
+    scenes::MeshBuilder builder(material);
+    builder.addQuad({x0, -10, z}, {x1, -10, z}, {x1, 10, z}, {x0, 10, z});
+    return builder.finish();
+}
+
+scenes::Object oneLevelObject(const std::string& name, std::vector<scenes::Mesh> meshes) {
+    scenes::Object object;
+    object.name = name;
+    scenes::Level level;
+    level.meshes = std::move(meshes);
+    object.levels.push_back(std::move(level));
+    return object;
+}
+
 // Two screen-filling quads on the view axis, one at z = -2 and one at z = -4, drawn in the
 // given order (object 0 first, as the renderer draws).
 scenes::Scene twoQuads(bool nearFirst) {
     scenes::Scene scene;
     scene.name = "quads";
     for (float z : nearFirst ? std::vector<float>{-2.0f, -4.0f} : std::vector<float>{-4.0f, -2.0f}) {
-        scenes::MeshBuilder builder;
-        builder.addQuad({-10, -10, z}, {10, -10, z}, {10, 10, z}, {-10, 10, z});
-        scenes::Object object;
-        object.name = "quad";
-        scenes::Level level;
-        level.meshes.push_back(builder.finish());
-        object.levels.push_back(std::move(level));
-        scene.objects.push_back(std::move(object));
+        scene.objects.push_back(oneLevelObject("quad", {quadMesh(-10, 10, z)}));
     }
     scene.views.push_back(straightCamera());
     scenes::updateStatistics(scene);
@@ -243,26 +255,8 @@ scenes::Scene halfTexturedBehindAQuad(bool farFirst) {
     scene.textures.push_back(texture);
     scene.materials.push_back(scenes::Material{"plain", glm::vec4(1.0f), -1});
     scene.materials.push_back(scenes::Material{"textured", glm::vec4(1.0f), 0});
-    scenes::Object far;
-    far.name = "far";
-    {
-        scenes::Level level;
-        scenes::MeshBuilder left(1), right(0);
-        left.addQuad({-10, -10, -4}, {0, -10, -4}, {0, 10, -4}, {-10, 10, -4});
-        right.addQuad({0, -10, -4}, {10, -10, -4}, {10, 10, -4}, {0, 10, -4});
-        level.meshes.push_back(left.finish());
-        level.meshes.push_back(right.finish());
-        far.levels.push_back(std::move(level));
-    }
-    scenes::Object near;
-    near.name = "near";
-    {
-        scenes::Level level;
-        scenes::MeshBuilder quad(0);
-        quad.addQuad({-10, -10, -2}, {10, -10, -2}, {10, 10, -2}, {-10, 10, -2});
-        level.meshes.push_back(quad.finish());
-        near.levels.push_back(std::move(level));
-    }
+    scenes::Object far = oneLevelObject("far", {quadMesh(-10, 0, -4, 1), quadMesh(0, 10, -4, 0)});
+    scenes::Object near = oneLevelObject("near", {quadMesh(-10, 10, -2, 0)});
     if (farFirst) {
         scene.objects.push_back(std::move(far));
         scene.objects.push_back(std::move(near));
