@@ -35,7 +35,7 @@ struct IncrementalEvaluator::State {
 
     detail::SsimKernel kernel;
     std::vector<double> referenceMean, referenceVariance;
-    detail::PooledMap ssimMap;
+    detail::FixedPooledMap ssimMap;
     detail::SsimScratch scratch;
 
     double boundaryReference = 0;
@@ -493,7 +493,8 @@ MetricResult IncrementalEvaluator::result() const {
     MetricResult result;
     if (s.ssimOn) {
         result.ssimComputed = true;
-        result.ssim = s.ssimMap.total() / (double(s.kernel.mapWidth) * double(s.kernel.mapHeight));
+        result.ssim = detail::ssimMeanFromFixed(s.ssimMap.total(),
+                                                std::uint64_t(s.kernel.mapWidth) * std::uint64_t(s.kernel.mapHeight));
     }
     if (s.boundaryOn) {
         result.boundaryEntropy.computed = true;

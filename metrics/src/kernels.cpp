@@ -121,6 +121,44 @@ double rowSum(const double* row, int width, double* tileSums) {
     return sum;
 }
 
+LODOPT_METRICS_CLONES std::int64_t ssimFixedSum(const double* values, int count) {
+    std::int64_t sum = 0;
+    for (int i = 0; i < count; ++i) sum += ssimFixed(values[i]);
+    return sum;
+}
+
+void FixedPooledMap::resize(int width, int height) {
+    mWidth = std::max(width, 0);
+    mHeight = std::max(height, 0);
+    mTiles = poolTiles(mWidth);
+    mValues.assign(std::size_t(mWidth) * mHeight, 0.0);
+    mTileSums.assign(std::size_t(mTiles) * mHeight, 0);
+    mRowSums.assign(std::size_t(mHeight), 0);
+    mTotal = 0;
+}
+
+void FixedPooledMap::refresh(int x0, int y0, int x1, int y1) {
+    x0 = std::max(x0, 0);
+    y0 = std::max(y0, 0);
+    x1 = std::min(x1, mWidth);
+    y1 = std::min(y1, mHeight);
+    if (x0 >= x1 || y0 >= y1) return;
+    const int t0 = x0 / kPoolTile, t1 = (x1 - 1) / kPoolTile + 1;
+    for (int y = y0; y < y1; ++y) {
+        std::int64_t* tiles = mTileSums.data() + std::size_t(y) * mTiles;
+        const double* values = mValues.data() + std::size_t(y) * mWidth;
+        std::int64_t row = mRowSums[std::size_t(y)];
+        for (int t = t0; t < t1; ++t) {
+            const int x = t * kPoolTile;
+            const std::int64_t tile = ssimFixedSum(values + x, std::min(kPoolTile, mWidth - x));
+            row += tile - tiles[t];  // integers: updating the sums in place is exact
+            tiles[t] = tile;
+        }
+        mTotal += row - mRowSums[std::size_t(y)];
+        mRowSums[std::size_t(y)] = row;
+    }
+}
+
 void PooledMap::resize(int width, int height) {
     mWidth = std::max(width, 0);
     mHeight = std::max(height, 0);

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "metrics/metrics.hpp"
@@ -74,7 +75,50 @@ double tileSum(const double* values, int count);
 double rowSum(const double* row, int width, double* tileSums);
 double sequentialSum(const double* values, int count);
 
-// A map of per-pixel values kept with its tile and row sums.
+// SSIM windows are pooled in fixed point: a value v in [-1, 1] counts as the integer nearest
+// to v * 2^40. Integer sums do not depend on their order, so every partition of the map (tiles
+// and rows, the fast path's groups of windows, owned and live windows) adds up to the same
+// bits; the rounding moves the mean by at most 2^-41.
+constexpr double kSsimFixedScale = 1099511627776.0;  // 2^40
+// round(v * 2^40) by the 1.5 * 2^52 trick (round to nearest even, and it vectorises, unlike
+// llrint): exact for |v * 2^40| < 2^51. Contraction is off for this library, so no FMA.
+inline std::int64_t ssimFixed(double value) {
+    constexpr double kMagic = 6755399441055744.0;  // 1.5 * 2^52
+    const double shifted = value * kSsimFixedScale + kMagic;
+    std::int64_t bits, magicBits;
+    std::memcpy(&bits, &shifted, sizeof bits);
+    std::memcpy(&magicBits, &kMagic, sizeof magicBits);
+    return bits - magicBits;
+}
+// Sum of ssimFixed over `count` values (|sum| < 2^63 for count < 2^23: a row or a tile).
+std::int64_t ssimFixedSum(const double* values, int count);
+// Totals over more windows than that (a 65536^2 image has 2^32) need 128 bits.
+__extension__ typedef __int128 SsimFixedTotal;
+// Mean SSIM from a fixed-point total over `windows` windows.
+inline double ssimMeanFromFixed(SsimFixedTotal total, std::uint64_t windows) {
+    return double(total) / kSsimFixedScale / double(windows);
+}
+
+// The SSIM map with its fixed-point tile and row sums.
+class FixedPooledMap {
+public:
+    void resize(int width, int height);  // all values 0
+    int width() const { return mWidth; }
+    int height() const { return mHeight; }
+    double* row(int y) { return mValues.data() + std::size_t(y) * mWidth; }
+    const double* values() const { return mValues.data(); }
+    // Re-pools the tiles touching [x0, x1) in rows [y0, y1) after their values changed.
+    void refresh(int x0, int y0, int x1, int y1);
+    SsimFixedTotal total() const { return mTotal; }
+
+private:
+    int mWidth = 0, mHeight = 0, mTiles = 0;
+    std::vector<double> mValues;
+    std::vector<std::int64_t> mTileSums, mRowSums;
+    SsimFixedTotal mTotal = 0;
+};
+
+// A map of per-pixel values kept with its tile and row sums (the paper's entropy forms).
 class PooledMap {
 public:
     void resize(int width, int height);  // all values 0

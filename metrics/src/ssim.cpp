@@ -355,9 +355,9 @@ void ssimMap(const ImageView& candidate, const ImageView& reference, const Metri
 
 double poolMean(const double* map, int width, int height, std::size_t mapStride) {
     assert(map != nullptr && width >= 1 && height >= 1 && mapStride >= std::size_t(width));
-    double total = 0;
-    for (int y = 0; y < height; ++y) total += detail::rowSum(map + std::size_t(y) * mapStride, width, nullptr);
-    return total / (double(width) * double(height));
+    detail::SsimFixedTotal total = 0;
+    for (int y = 0; y < height; ++y) total += detail::ssimFixedSum(map + std::size_t(y) * mapStride, width);
+    return detail::ssimMeanFromFixed(total, std::uint64_t(width) * std::uint64_t(height));
 }
 
 double ssim(const ImageView& candidate, const ImageView& reference, const MetricParameters& parameters) {

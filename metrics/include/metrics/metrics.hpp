@@ -152,8 +152,9 @@ SsimMapSize ssimMapSize(int width, int height, const MetricParameters& parameter
 void ssimMap(const ImageView& candidate, const ImageView& reference, const MetricParameters& parameters,
              double* map, std::size_t mapStride);
 
-// Mean of a map as every function here pools it: 64-column tile sums, then row sums, then
-// the total, always in that order, so a partially recomputed map pools to the same bits.
+// Mean of an SSIM map (values in [-1, 1]) as every function here pools it: each value in
+// fixed point (the integer nearest to v * 2^40), summed exactly, so any partition of the map
+// pools to the same bits; the mean moves by at most 2^-41 from an exact sum of the doubles.
 double poolMean(const double* map, int width, int height, std::size_t mapStride);
 
 // Mean SSIM, [-1, 1]: ssimMap then poolMean.
