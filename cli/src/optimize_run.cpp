@@ -167,17 +167,37 @@ optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions
 
 namespace {
 
-// The fast path's owned-window cache after the search (null for the full path): how many SSIM
-// windows one searched object owns (scored once per level) and how many read several (scored
-// per candidate), the (object, level) entries filled and their memory.
+// The fast path's owned-window cache after the search (null for the full path and when the
+// window groups serve): how many SSIM windows one searched object owns (scored once per level)
+// and how many read several (scored per candidate), the (object, level) entries filled and
+// their memory.
 nlohmann::json ownedWindowsJson(const optimizer::Evaluator* evaluator) {
     const auto* layers = dynamic_cast<const evaluation::LayerEvaluator*>(evaluator);
     if (!layers) return nullptr;
     const metrics::PartCacheStats stats = layers->partCacheStats();
+    if (stats.parts == 0) return nullptr;
     return {{"owned_ssim_windows", stats.ownedSsimWindows},
             {"live_ssim_windows", stats.liveSsimWindows},
             {"entries_filled", stats.filledEntries},
             {"entries", stats.entries},
+            {"bytes", stats.bytes}};
+}
+
+// The fast path's window groups after the search (null for the full path and when they are
+// not used): groups, the SSIM windows that depend on two or more objects, kept scores and
+// their memory. (How many look-ups found a kept score depends on thread timing: two threads
+// may both score a combination neither has found yet, so it is left out of the results.)
+nlohmann::json windowGroupsJson(const optimizer::Evaluator* evaluator) {
+    const auto* layers = dynamic_cast<const evaluation::LayerEvaluator*>(evaluator);
+    if (!layers) return nullptr;
+    const evaluation::GroupCacheStats stats = layers->groupCacheStats();
+    if (stats.groups == 0) return nullptr;
+    return {{"groups", stats.groups},
+            {"largest_group_objects", stats.largestGroup},
+            {"uncacheable_groups", stats.uncacheableGroups},
+            {"ssim_windows", stats.ssimWindows},
+            {"multi_object_ssim_windows", stats.multiObjectSsimWindows},
+            {"kept_scores", stats.entries},
             {"bytes", stats.bytes}};
 }
 
@@ -257,6 +277,7 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
           {"searched_objects", skip.searchedObjects},
           {"objects", skipped}}},
         {"owned_windows", ownedWindowsJson(context.evaluator.get())},
+        {"window_groups", windowGroupsJson(context.evaluator.get())},
         {"setup_seconds", setupSeconds},
         {"evals_per_second", searchSeconds > 0.0 ? double(result.evaluations) / searchSeconds : 0.0},
         {"search_seconds", searchSeconds},

@@ -169,6 +169,16 @@ void addFacts(ReportContext& context, const nlohmann::json& result, const Baseli
                             fixed(reached > 0 ? 100.0 * ownedWindows / reached : NAN, 1) + " %), " +
                             jsonText(owned, "entries_filled", "–") + " of " + jsonText(owned, "entries", "–")});
     }
+    if (result.contains("window_groups") && result["window_groups"].is_object()) {
+        // The fast path's groups: how much of the SSIM work depends on several objects at once.
+        const nlohmann::json& groups = result["window_groups"];
+        const double windows = jsonNumber(groups, "ssim_windows", NAN);
+        const double shared = jsonNumber(groups, "multi_object_ssim_windows", NAN);
+        rows.push_back({"window groups, SSIM windows depending on 2+ objects (share), scores kept",
+                        jsonText(groups, "groups", "–") + ", " + jsonText(groups, "multi_object_ssim_windows", "–") +
+                            " (" + fixed(windows > 0 ? 100.0 * shared / windows : NAN, 1) + " %), " +
+                            jsonText(groups, "kept_scores", "–")});
+    }
     if (baseline.image.width > 0) {
         rows.push_back({"baseline " + baselineName + ": fitness, predicted ms",
                         fixed(baseline.fitness, 4) + ", " + fixed(baseline.predictedMs, 2)});

@@ -5,6 +5,7 @@
 
 #include "evaluation/evaluation.hpp"
 #include "dirty_regions.hpp"
+#include "window_groups.hpp"
 #include "metrics/incremental_evaluator.hpp"
 
 namespace lodopt::evaluation {
@@ -222,18 +223,31 @@ std::vector<std::int32_t> pixelParts(const ViewSetup& setup) {
 }  // namespace
 
 LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads,
-                               DirtyRegions regions, int states, PartCaching caching)
+                               DirtyRegions regions, int states, PartCaching caching, std::size_t groupCacheBytes)
     : mSetup(setup), mParameters(parameters), mThreads(std::max(threads, 1)) {
-    if (caching == PartCaching::On && regions == DirtyRegions::ChangedPixels && !setup.variableObjects().empty()) {
-        const std::vector<int> counts = setup.levelCounts();
-        mPartCache = metrics::makePartCache(setup.width(), setup.height(), parameters, pixelParts(setup), counts);
+    const bool changedPixels = regions == DirtyRegions::ChangedPixels;
+    // Groups need a fitness made only of window sums; otherwise the owned windows serve.
+    if (caching == PartCaching::Groups && !(changedPixels && metrics::RegionScorer::supports(parameters))) {
+        caching = PartCaching::On;
     }
-    const int stateCount = std::max(states, mThreads);
-    for (int t = 0; t < stateCount; ++t) {
-        mStates.push_back(std::make_unique<State>(setup, parameters, regions, mPartCache));
+    const int count = std::max(states, mThreads);
+    if (caching == PartCaching::Groups) {
+        mScorer = std::make_unique<metrics::RegionScorer>(viewOf(setup.reference()), parameters);
+        mGroups = std::make_unique<detail::WindowGroups>(setup, *mScorer, groupCacheBytes);
+        for (int t = 0; t < count; ++t) {
+            mGroupStates.push_back(std::make_unique<detail::GroupState>(setup, *mScorer, *mGroups));
+        }
+    } else {
+        if (caching == PartCaching::On && changedPixels && !setup.variableObjects().empty()) {
+            const std::vector<int> counts = setup.levelCounts();
+            mPartCache = metrics::makePartCache(setup.width(), setup.height(), parameters, pixelParts(setup), counts);
+        }
+        for (int t = 0; t < count; ++t) {
+            mStates.push_back(std::make_unique<State>(setup, parameters, regions, mPartCache));
+        }
     }
-    mAssigned.resize(mStates.size());
-    mBusy.reserve(mStates.size());
+    mAssigned.resize(stateCount());
+    mBusy.reserve(stateCount());
     for (int object : setup.variableObjects()) {
         std::vector<std::uint64_t> pixels;
         for (int level : setup.objects()[object].optionLevels) pixels.push_back(setup.layer(object, level).coveredPixels);
@@ -243,27 +257,45 @@ LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricPara
 
 LayerEvaluator::~LayerEvaluator() = default;
 
+std::size_t LayerEvaluator::stateCount() const { return mGroups ? mGroupStates.size() : mStates.size(); }
+
+const optimizer::Combination& LayerEvaluator::currentOf(std::size_t state) const {
+    return mGroups ? mGroupStates[state]->current() : mStates[state]->current;
+}
+
+void LayerEvaluator::moveState(std::size_t state, const optimizer::Combination& combination) {
+    if (mGroups) {
+        mGroupStates[state]->moveTo(combination);
+    } else {
+        mStates[state]->moveTo(mSetup, combination);
+    }
+}
+
+metrics::MetricResult LayerEvaluator::resultOf(std::size_t state) const {
+    return mGroups ? mGroupStates[state]->result() : mStates[state]->metrics.result();
+}
+
 const optimizer::Combination& LayerEvaluator::planned(std::size_t state,
                                                       std::span<const optimizer::Combination> batch) const {
-    return mAssigned[state].empty() ? mStates[state]->current : batch[mAssigned[state].back()];
+    return mAssigned[state].empty() ? currentOf(state) : batch[mAssigned[state].back()];
 }
 
 std::size_t LayerEvaluator::nearestState(const optimizer::Combination& combination,
                                          std::span<const optimizer::Combination> batch, std::size_t cap) const {
     // Cost of a move: the pixels the changed objects' old and new layers cover, an upper bound
     // of what gets recomposited (re-scoring follows the pixels that really change).
-    std::size_t best = mStates.size();
+    std::size_t best = stateCount();
     std::uint64_t bestCost = 0;
-    for (std::size_t s = 0; s < mStates.size(); ++s) {
+    for (std::size_t s = 0; s < stateCount(); ++s) {
         if (mAssigned[s].size() >= cap) continue;
         const optimizer::Combination& from = planned(s, batch);
         std::uint64_t cost = 0;
-        for (std::size_t v = 0; v < combination.size() && (best == mStates.size() || cost < bestCost); ++v) {
+        for (std::size_t v = 0; v < combination.size() && (best == stateCount() || cost < bestCost); ++v) {
             if (combination[v] != from[v]) {
                 cost += mOptionPixels[v][std::size_t(from[v])] + mOptionPixels[v][std::size_t(combination[v])];
             }
         }
-        if (best == mStates.size() || cost < bestCost) {
+        if (best == stateCount() || cost < bestCost) {
             best = s;
             bestCost = cost;
         }
@@ -290,12 +322,12 @@ void LayerEvaluator::evaluateBatch(std::span<const optimizer::Combination> combi
     }
     auto run = [&](std::size_t s) {
         for (std::size_t k : mAssigned[s]) {
-            mStates[s]->moveTo(mSetup, combinations[k]);
-            scores[k] = toScore(mStates[s]->metrics.result());
+            moveState(s, combinations[k]);
+            scores[k] = toScore(resultOf(s));
         }
     };
     mBusy.clear();
-    for (std::size_t s = 0; s < mStates.size(); ++s) {
+    for (std::size_t s = 0; s < stateCount(); ++s) {
         if (!mAssigned[s].empty()) mBusy.push_back(s);
     }
     if (threads <= 1 || mBusy.size() <= 1) {
@@ -315,14 +347,16 @@ void LayerEvaluator::evaluateBatch(std::span<const optimizer::Combination> combi
 }
 
 metrics::MetricResult LayerEvaluator::metricsOf(const optimizer::Combination& combination) {
-    mStates[0]->moveTo(mSetup, combination);
-    return mStates[0]->metrics.result();
+    moveState(0, combination);
+    return resultOf(0);
 }
 
 renderer::Frame LayerEvaluator::imageOf(const optimizer::Combination& combination) {
-    mStates[0]->moveTo(mSetup, combination);
-    return mStates[0]->frame;
+    moveState(0, combination);
+    return mGroups ? mGroupStates[0]->image() : mStates[0]->frame;
 }
+
+GroupCacheStats LayerEvaluator::groupCacheStats() const { return mGroups ? mGroups->stats() : GroupCacheStats{}; }
 
 metrics::PartCacheStats LayerEvaluator::partCacheStats() const {
     return mPartCache ? metrics::partCacheStats(*mPartCache) : metrics::PartCacheStats{};

@@ -68,14 +68,17 @@ TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
     EXPECT_EQ(result["levels"].size(), 3u);
     EXPECT_TRUE(result["levels"].contains("ship"));
     EXPECT_GT(result["evaluations"].get<int>(), 0);
-    // The fast path's owned-window cache: ship_close has three searched objects, each owning
-    // windows; the three starting levels' entries are filled when the evaluator is built, so
-    // more than three means the search moved objects and filled the entries of other levels.
-    const nlohmann::json& owned = result["owned_windows"];
-    ASSERT_TRUE(owned.is_object()) << owned.dump();
-    EXPECT_GT(owned["owned_ssim_windows"].get<std::int64_t>(), 0);
-    EXPECT_GT(owned["entries_filled"].get<std::int64_t>(), 3);
-    EXPECT_LE(owned["entries_filled"].get<std::int64_t>(), owned["entries"].get<std::int64_t>());
+    // The fast path's window groups: ship_close has three searched objects, so groups of one
+    // and of several of them; the starting combination's scores are kept when the evaluator is
+    // built (one per group), so more kept scores mean the search moved objects.
+    EXPECT_TRUE(result["owned_windows"].is_null()) << result["owned_windows"].dump();
+    const nlohmann::json& groups = result["window_groups"];
+    ASSERT_TRUE(groups.is_object()) << groups.dump();
+    EXPECT_GE(groups["groups"].get<std::int64_t>(), 3);
+    EXPECT_GE(groups["largest_group_objects"].get<std::int64_t>(), 2);
+    EXPECT_GT(groups["multi_object_ssim_windows"].get<std::int64_t>(), 0);
+    EXPECT_LT(groups["multi_object_ssim_windows"].get<std::int64_t>(), groups["ssim_windows"].get<std::int64_t>());
+    EXPECT_GT(groups["kept_scores"].get<std::int64_t>(), groups["groups"].get<std::int64_t>());
     EXPECT_TRUE(std::filesystem::exists(out / "curve.csv"));
     EXPECT_TRUE(std::filesystem::exists(out / "optimized.png"));
     EXPECT_TRUE(std::filesystem::exists(out / "reference.png"));

@@ -123,7 +123,7 @@ TEST_F(ReportCli, OptimizePageHasImagesMapsLevelsAndCurve) {
     EXPECT_NE(html.find("SSIM map"), std::string::npos);
     EXPECT_NE(html.find("Difference heat map"), std::string::npos);
     EXPECT_NE(html.find("Baseline (screensize"), std::string::npos);
-    EXPECT_NE(html.find("owned SSIM windows"), std::string::npos);  // the fast path's cache
+    EXPECT_NE(html.find("window groups"), std::string::npos);  // the fast path's cache
     // Reference, optimized, baseline, SSIM map, difference; + the levels and curve plots.
     const std::size_t images = countOf(html, kEmbeddedPng);
     EXPECT_EQ(images, sGnuplot ? 7u : 5u);

@@ -137,3 +137,74 @@ TEST(FastPathExactness, OwnedWindowCacheChangesNoBitOnEveryHarborViewAndTheSpars
         }
     }
 }
+
+TEST(FastPathExactness, WindowGroupsMatchFromScratchScoresToTheBit) {
+    // The window groups (PartCaching::Groups, the default for a search's parameters) against a
+    // from-scratch evaluation of a fresh composite, the owned-window path, the same groups with
+    // no memory to keep scores in (every group scored anew), threaded batches, and the full render.
+    renderer::RenderSettings settings;
+    settings.width = settings.height = 128;
+    const metrics::MetricParameters parameters = evaluation::searchParameters({});
+    using evaluation::LayerEvaluator;
+    for (const char* sceneName : {"harbor", "forest"}) {
+        scenes::Scene scene = scenes::loadScene(sceneName);
+        renderer::Renderer renderer(scene, settings);
+        for (const scenes::Camera& camera : scene.views) {
+            if (std::string(sceneName) == "forest" && camera.name != "dense" && camera.name != "sparse") continue;
+            evaluation::ViewSetup setup(scene, camera, renderer);
+            const std::vector<int> counts = setup.levelCounts();
+            ASSERT_GE(counts.size(), 2u) << camera.name;
+            LayerEvaluator grouped(setup, parameters);
+            LayerEvaluator owned(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
+                                 LayerEvaluator::kDefaultStates, evaluation::PartCaching::On);
+            LayerEvaluator unkept(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
+                                  LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups, 0);
+            LayerEvaluator threaded(setup, parameters, 3);
+            evaluation::FullRenderEvaluator full(setup, renderer, parameters);
+            const std::vector<optimizer::Combination> walk = randomWalk(counts, 80, 13);
+            std::vector<optimizer::Score> batch(walk.size());
+            threaded.evaluateBatch(walk, batch);
+            for (std::size_t k = 0; k < walk.size(); ++k) {
+                const std::string what = std::string(sceneName) + "/" + camera.name + " step " + std::to_string(k);
+                const optimizer::Score score = grouped.evaluate(walk[k]);
+                expectSameScore(score, owned.evaluate(walk[k]), what + " vs owned windows");
+                expectSameScore(score, unkept.evaluate(walk[k]), what + " vs nothing kept");
+                expectSameScore(score, batch[k], what + " vs threaded batch");
+                if (k % 8 == 0) {
+                    const renderer::Frame expected = freshComposite(setup, walk[k]);
+                    ASSERT_EQ(grouped.imageOf(walk[k]).rgba, expected.rgba) << what;
+                    expectSameScore(score, evaluation::toScore(metrics::evaluate(viewOf(expected), viewOf(setup.reference()), parameters)),
+                                    what + " vs from scratch");
+                    EXPECT_LT(std::abs(score.fitness - full.evaluate(walk[k]).fitness), 1e-3) << what << " vs full render";
+                }
+            }
+            const evaluation::GroupCacheStats stats = grouped.groupCacheStats();
+            EXPECT_GT(stats.groups, int(counts.size())) << camera.name;  // one per object at least, and the empty set
+            EXPECT_GE(stats.largestGroup, 1) << camera.name;
+            EXPECT_GT(stats.ssimWindows, stats.multiObjectSsimWindows) << camera.name;
+            EXPECT_GT(stats.hits, 0u) << camera.name;
+            EXPECT_GT(stats.entries, std::uint64_t(stats.groups)) << camera.name;
+            EXPECT_EQ(unkept.groupCacheStats().entries, 0u) << camera.name;
+            EXPECT_EQ(owned.groupCacheStats().groups, 0) << camera.name;
+            if (camera.name == "dense") {
+                EXPECT_GT(stats.multiObjectSsimWindows, 0u);
+                EXPECT_GE(stats.largestGroup, 3);
+            }
+        }
+    }
+}
+
+TEST(FastPathExactness, PrecisionRecallParametersKeepTheOwnedWindows) {
+    // Precision/recall is not a sum of window scores: asked for it, the evaluator keeps the
+    // owned-window path (no groups) and still reports it.
+    scenes::Scene scene = scenes::loadScene("harbor");
+    renderer::RenderSettings settings;
+    settings.width = settings.height = 64;
+    renderer::Renderer renderer(scene, settings);
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    evaluation::LayerEvaluator evaluator(setup, metrics::MetricParameters{});
+    const optimizer::Score score = evaluator.evaluate(optimizer::Combination(setup.levelCounts().size(), 1));
+    EXPECT_EQ(score.componentCount, 5);
+    EXPECT_EQ(evaluator.groupCacheStats().groups, 0);
+    EXPECT_GT(evaluator.partCacheStats().parts, 0);
+}

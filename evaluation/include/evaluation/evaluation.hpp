@@ -34,6 +34,7 @@
 
 #include "metrics/incremental_evaluator.hpp"
 #include "metrics/metrics.hpp"
+#include "metrics/region_scorer.hpp"
 #include "optimizer/problem.hpp"
 #include "renderer/renderer.hpp"
 #include "scenes/scene.hpp"
@@ -131,21 +132,47 @@ enum class DirtyRegions {
 // particles, and a state left near one of them makes the next move there cheap. A batch is
 // spread over up to `threads` threads, each state used by one thread at a time.
 //
-// Owned windows (PartCaching::On, the default with ChangedPixels): each searched object is a
-// part of the image (metrics::PartCache). A pixel that only one object's levels ever cover
-// depends on that object's level alone, and so does every metric window made only of such
-// pixels (and of pixels no searched object covers). Those windows are scored once per (object,
-// level), shared by all states, and copied in when the object moves to that level; only windows
-// where two searched objects' levels meet are computed per candidate. Scores are unchanged, bit
-// for bit.
-enum class PartCaching { On, Off };
+// How the fast path scores a candidate (ChangedPixels only; docs/optimizer.md):
+// - Groups (the default): every metric window depends on the levels of the searched objects
+//   whose layers reach its pixels; windows with the same objects form a group, and a group's
+//   score (its SSIM windows' exact sum and its histogram counts) is kept per combination of
+//   those objects' levels, shared by all states. A candidate re-scores only the groups of the
+//   objects that moved: a kept score is a lookup, a new one composites and scores just the
+//   pixels that group reads. Needs a fitness made of window sums (metrics::RegionScorer::
+//   supports: histogram entropies, no precision/recall); otherwise the evaluator uses On.
+// - On: owned windows. A pixel that only one object's levels ever cover depends on that
+//   object's level alone, and so does every metric window made only of such pixels (and of
+//   pixels no searched object covers). Those windows are scored once per (object, level) and
+//   copied in when the object moves to that level; windows where two searched objects' levels
+//   meet are computed per candidate, on the recomposited frame.
+// - Off: every changed pixel's windows are computed per candidate.
+// Scores are the same, bit for bit, whichever is used.
+enum class PartCaching { Groups, On, Off };
+
+// The window groups' figures (zeros without them).
+struct GroupCacheStats {
+    int groups = 0;
+    int largestGroup = 0;        // most searched objects one group depends on
+    int uncacheableGroups = 0;   // groups whose key does not fit 64 bits (scored every time)
+    std::uint64_t ssimWindows = 0, multiObjectSsimWindows = 0;  // the latter in groups of 2+ objects
+    std::uint64_t entries = 0, bytes = 0;  // kept scores and their memory
+    std::uint64_t hits = 0, misses = 0;    // group look-ups answered from kept scores, and not
+};
+
+namespace detail {
+class WindowGroups;
+class GroupState;
+}  // namespace detail
 
 class LayerEvaluator final : public optimizer::Evaluator {
 public:
     static constexpr int kDefaultStates = 4;
+    // Memory the window groups keep scores in, at most: beyond it new scores are still
+    // computed and used, but not kept.
+    static constexpr std::size_t kGroupCacheBytes = std::size_t(256) << 20;
     LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads = 1,
                    DirtyRegions regions = DirtyRegions::ChangedPixels, int states = kDefaultStates,
-                   PartCaching caching = PartCaching::On);
+                   PartCaching caching = PartCaching::Groups, std::size_t groupCacheBytes = kGroupCacheBytes);
     ~LayerEvaluator() override;
 
     optimizer::Score evaluate(const optimizer::Combination& combination) override;
@@ -161,6 +188,8 @@ public:
     renderer::Frame imageOf(const optimizer::Combination& combination);
     // The owned-window cache's figures (zeros without one).
     metrics::PartCacheStats partCacheStats() const;
+    // The window groups' figures (zeros without them).
+    GroupCacheStats groupCacheStats() const;
 
 private:
     struct State;
@@ -177,6 +206,14 @@ private:
     std::vector<std::unique_ptr<State>> mStates;
     std::vector<std::vector<std::uint64_t>> mOptionPixels;  // [variable][option] covered pixels
     std::shared_ptr<metrics::PartCache> mPartCache;  // null without PartCaching::On
+    // PartCaching::Groups: the scorer, the groups and their states (then mStates is empty).
+    std::unique_ptr<metrics::RegionScorer> mScorer;
+    std::unique_ptr<detail::WindowGroups> mGroups;
+    std::vector<std::unique_ptr<detail::GroupState>> mGroupStates;
+    std::size_t stateCount() const;
+    const optimizer::Combination& currentOf(std::size_t state) const;
+    void moveState(std::size_t state, const optimizer::Combination& combination);
+    metrics::MetricResult resultOf(std::size_t state) const;
     // evaluateBatch's working lists, empty between calls (kept to avoid allocating per batch):
     std::vector<std::vector<std::size_t>> mAssigned;  // per state, its candidates in batch order
     std::vector<std::size_t> mBusy;                   // states with candidates

@@ -1,0 +1,231 @@
+// RegionScorer: scores of window sets (see the header). Per-window values come from the same
+// kernels as evaluate() (ssimWindows, sobelBinsRow, grayBinsRow), and every sum is an integer,
+// so a partition's totals give evaluate()'s bits.
+#include "metrics/region_scorer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <string>
+
+#include "kernels.hpp"
+
+namespace lodopt::metrics {
+
+namespace {
+// SSIM windows of a set are computed in bands of this many map rows, over each band's
+// column extent (a set is often a thin seam between objects: short bands waste less).
+constexpr int kBandRows = 16;
+}  // namespace
+
+void WindowTotals::add(const WindowSetScore& score, int sign) {
+    ssim += sign > 0 ? score.ssim : -score.ssim;
+    for (const auto& [bin, count] : score.gray) gray[bin] += sign * std::int64_t(count);
+    for (const auto& [bin, count] : score.sobel) sobel[bin] += sign * std::int64_t(count);
+}
+
+struct RegionScorer::State {
+    MetricParameters parameters;
+    int width = 0, height = 0, channels = 0;
+    detail::GrayScale grayScale;
+    bool ssimOn = false, boundaryOn = false, informationOn = false;
+    detail::SsimKernel kernel;
+    std::vector<std::int32_t> referenceGray;
+    std::vector<double> referenceMean, referenceVariance;
+    detail::SobelBinning sobel;
+    double boundaryReference = 0, informationReference = 0;
+};
+
+class RegionScorer::Work {
+public:
+    std::vector<std::int32_t> gray;  // the candidate, as loaded
+    std::vector<double> band;        // kBandRows map rows
+    detail::SsimScratch scratch;
+    std::vector<std::uint8_t> grayBins;
+    std::vector<std::uint16_t> sobelBins;
+    std::array<std::uint32_t, 256> grayCounts{};
+    std::vector<std::uint32_t> sobelCounts;
+};
+
+bool RegionScorer::supports(const MetricParameters& parameters) {
+    return !parameters.computePrecisionRecall &&
+           (parameters.boundaryEntropyWeight <= 0 || parameters.boundaryEntropyMode == EntropyMode::Histogram) &&
+           (parameters.informationEntropyWeight <= 0 || parameters.informationEntropyMode == EntropyMode::Histogram);
+}
+
+RegionScorer::RegionScorer(const ImageView& reference, const MetricParameters& parameters)
+    : mState(std::make_unique<State>()) {
+    validateParameters(parameters);
+    detail::validateView(reference, "reference image");
+    if (!supports(parameters)) {
+        throw MetricError("region scores need the histogram entropies and no precision/recall");
+    }
+    State& s = *mState;
+    s.parameters = parameters;
+    s.width = reference.width;
+    s.height = reference.height;
+    s.channels = reference.channels;
+    s.grayScale = detail::grayScale(parameters.grayWeights);
+    s.ssimOn = parameters.ssimWeight > 0;
+    s.boundaryOn = parameters.boundaryEntropyWeight > 0;
+    s.informationOn = parameters.informationEntropyWeight > 0;
+    if (s.ssimOn) {
+        s.kernel = detail::makeSsimKernel(parameters, s.width, s.height, s.grayScale);
+        detail::grayImage(reference, s.grayScale, s.referenceGray);
+        const std::size_t mapSize = std::size_t(s.kernel.mapWidth) * s.kernel.mapHeight;
+        s.referenceMean.assign(mapSize, 0.0);
+        s.referenceVariance.assign(mapSize, 0.0);
+        detail::SsimScratch scratch;
+        scratch.reserve(s.kernel);
+        detail::ssimReferenceStatistics(s.referenceGray.data(), std::size_t(s.width), s.kernel, 0, 0,
+                                        s.kernel.mapWidth, s.kernel.mapHeight, scratch, s.referenceMean.data(),
+                                        s.referenceVariance.data(), std::size_t(s.kernel.mapWidth));
+    }
+    if (s.boundaryOn) {
+        s.boundaryReference = boundaryEntropy(reference, parameters);
+        s.sobel = detail::makeSobelBinning(parameters.boundaryHistogramBins, s.grayScale);
+    }
+    if (s.informationOn) s.informationReference = informationEntropy(reference, parameters);
+}
+
+RegionScorer::~RegionScorer() = default;
+RegionScorer::RegionScorer(RegionScorer&&) noexcept = default;
+RegionScorer& RegionScorer::operator=(RegionScorer&&) noexcept = default;
+
+int RegionScorer::width() const { return mState->width; }
+int RegionScorer::height() const { return mState->height; }
+SsimMapSize RegionScorer::ssimMapSize() const {
+    const State& s = *mState;
+    return s.ssimOn ? SsimMapSize{s.kernel.mapWidth, s.kernel.mapHeight, s.kernel.window} : SsimMapSize{0, 0, 0};
+}
+int RegionScorer::sobelBins() const { return mState->boundaryOn ? mState->sobel.bins : 0; }
+int RegionScorer::grayBins() const { return mState->informationOn ? 256 : 0; }
+
+void RegionScorer::WorkDeleter::operator()(Work* work) const { delete work; }
+
+RegionScorer::WorkPtr RegionScorer::makeWork() const {
+    const State& s = *mState;
+    WorkPtr work(new Work);
+    work->gray.assign(std::size_t(s.width) * s.height, 0);
+    if (s.ssimOn) {
+        work->band.assign(std::size_t(kBandRows) * s.kernel.mapWidth, 0.0);
+        work->scratch.reserve(s.kernel);
+    }
+    work->grayBins.assign(std::size_t(s.width), 0);
+    work->sobelBins.assign(std::size_t(s.width), 0);
+    work->sobelCounts.assign(std::size_t(std::max(s.sobel.bins, 1)), 0);
+    return work;
+}
+
+void RegionScorer::loadPixels(Work& work, const ImageView& candidate, int x0, int y0, int x1, int y1) const {
+    const State& s = *mState;
+    detail::validateView(candidate, "candidate image");
+    if (candidate.width != s.width || candidate.height != s.height || candidate.channels != s.channels) {
+        throw MetricError("candidate image is " + std::to_string(candidate.width) + "x" +
+                          std::to_string(candidate.height) + "x" + std::to_string(candidate.channels) +
+                          ", the reference " + std::to_string(s.width) + "x" + std::to_string(s.height) + "x" +
+                          std::to_string(s.channels));
+    }
+    x0 = std::max(x0, 0);
+    y0 = std::max(y0, 0);
+    x1 = std::min(x1, s.width);
+    y1 = std::min(y1, s.height);
+    for (int y = y0; y < y1; ++y) {
+        detail::grayRow(candidate.pixels + y * candidate.rowStride + std::ptrdiff_t(x0) * s.channels, s.channels,
+                        x1 - x0, s.grayScale, work.gray.data() + std::size_t(y) * s.width + x0);
+    }
+}
+
+void RegionScorer::score(Work& work, const WindowSet& set, WindowSetScore& out) const {
+    const State& s = *mState;
+    out.ssim = 0;
+    out.gray.clear();
+    out.sobel.clear();
+    const std::size_t stride = std::size_t(s.width);
+    if (s.ssimOn) {
+        const std::size_t mapWidth = std::size_t(s.kernel.mapWidth);
+        // Runs of one band of kBandRows rows: compute the band's extent, then sum the runs.
+        for (std::size_t i = 0; i < set.ssim.size();) {
+            const int band = set.ssim[i].y / kBandRows;
+            std::size_t j = i;
+            int x0 = set.ssim[i].x0, x1 = set.ssim[i].x1;
+            while (j < set.ssim.size() && set.ssim[j].y / kBandRows == band) {
+                x0 = std::min(x0, set.ssim[j].x0);
+                x1 = std::max(x1, set.ssim[j].x1);
+                ++j;
+            }
+            const int y0 = set.ssim[i].y, y1 = set.ssim[j - 1].y + 1;
+            const std::size_t at = std::size_t(y0) * mapWidth + std::size_t(x0);
+            detail::ssimWindows(work.gray.data(), s.referenceGray.data(), stride, s.kernel, x0, y0, x1, y1,
+                                s.referenceMean.data() + at, s.referenceVariance.data() + at, mapWidth,
+                                work.scratch, work.band.data(), mapWidth);
+            for (; i < j; ++i) {
+                const WindowRun& run = set.ssim[i];
+                out.ssim += detail::ssimFixedSum(work.band.data() + std::size_t(run.y - y0) * mapWidth +
+                                                     std::size_t(run.x0 - x0),
+                                                 run.x1 - run.x0);
+            }
+        }
+    }
+    if (s.informationOn) {
+        for (const WindowRun& run : set.gray) {
+            detail::grayBinsRow(work.gray.data() + std::size_t(run.y) * stride + run.x0, run.x1 - run.x0, s.grayScale,
+                                work.grayBins.data());
+            for (int k = 0; k < run.x1 - run.x0; ++k) ++work.grayCounts[work.grayBins[std::size_t(k)]];
+        }
+        for (std::size_t b = 0; b < work.grayCounts.size(); ++b) {
+            if (work.grayCounts[b] == 0) continue;
+            out.gray.emplace_back(std::uint16_t(b), work.grayCounts[b]);
+            work.grayCounts[b] = 0;
+        }
+    }
+    if (s.boundaryOn) {
+        for (const WindowRun& run : set.sobel) {
+            detail::sobelBinsRow(work.gray.data() + std::size_t(run.y) * stride + run.x0, std::ptrdiff_t(stride),
+                                 run.x1 - run.x0, s.sobel, work.sobelBins.data());
+            for (int k = 0; k < run.x1 - run.x0; ++k) ++work.sobelCounts[work.sobelBins[std::size_t(k)]];
+        }
+        for (std::size_t b = 0; b < work.sobelCounts.size(); ++b) {
+            if (work.sobelCounts[b] == 0) continue;
+            out.sobel.emplace_back(std::uint16_t(b), work.sobelCounts[b]);
+            work.sobelCounts[b] = 0;
+        }
+    }
+}
+
+WindowTotals RegionScorer::emptyTotals() const {
+    WindowTotals totals;
+    totals.gray.assign(256, 0);
+    totals.sobel.assign(std::size_t(std::max(mState->sobel.bins, 1)), 0);
+    return totals;
+}
+
+MetricResult RegionScorer::result(const WindowTotals& totals) const {
+    const State& s = *mState;
+    MetricResult result;
+    // Histograms of a partition hold non-negative counts; as unsigned, the same values.
+    auto counts = [](const std::vector<std::int64_t>& histogram) {
+        return reinterpret_cast<const std::uint64_t*>(histogram.data());
+    };
+    if (s.ssimOn) {
+        result.ssimComputed = true;
+        result.ssim = detail::ssimMeanFromFixed(totals.ssim, std::uint64_t(s.kernel.mapWidth) *
+                                                                 std::uint64_t(s.kernel.mapHeight));
+    }
+    if (s.boundaryOn) {
+        result.boundaryEntropy.computed = true;
+        result.boundaryEntropy.reference = s.boundaryReference;
+        const std::uint64_t interior =
+            std::uint64_t(std::max(s.width - 2, 0)) * std::uint64_t(std::max(s.height - 2, 0));
+        result.boundaryEntropy.candidate = detail::histogramEntropy(counts(totals.sobel), s.sobel.bins, interior);
+    }
+    if (s.informationOn) {
+        result.informationEntropy.computed = true;
+        result.informationEntropy.reference = s.informationReference;
+        const std::uint64_t pixels = std::uint64_t(s.width) * std::uint64_t(s.height);
+        result.informationEntropy.candidate = detail::histogramEntropy(counts(totals.gray), 256, pixels);
+    }
+    fuse(result, s.parameters);
+    return result;
+}
+
+}  // namespace lodopt::metrics

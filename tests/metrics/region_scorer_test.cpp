@@ -1,0 +1,120 @@
+// RegionScorer: the scores of a partition of every window and pixel add up to evaluate()'s
+// result, to the bit, whatever the partition.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "metrics/region_scorer.hpp"
+#include "test_images.hpp"
+
+using namespace lodopt::metrics;
+namespace images = lodopt::metrics::testing;
+using images::TestImage;
+
+namespace {
+
+MetricParameters searchLike() {
+    MetricParameters p;
+    p.computePrecisionRecall = false;
+    return p;
+}
+
+// Every SSIM window, gray pixel and interior pixel of a width x height image, split by rows
+// and columns into `pieces` x `pieces` rectangles, one set each (runs row by row).
+std::vector<WindowSet> gridPartition(int width, int height, const SsimMapSize& map, int pieces) {
+    std::vector<WindowSet> sets(std::size_t(pieces) * pieces);
+    auto split = [&](int x, int y, int w, int h) {
+        return std::size_t(std::min(y * pieces / h, pieces - 1)) * pieces + std::size_t(std::min(x * pieces / w, pieces - 1));
+    };
+    auto addRuns = [&](int x0, int x1, int y0, int y1, int w, int h, auto member) {
+        for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1;) {
+                const std::size_t set = split(x, y, w, h);
+                int end = x + 1;
+                while (end < x1 && split(end, y, w, h) == set) ++end;
+                (sets[set].*member).push_back({y, x, end});
+                x = end;
+            }
+        }
+    };
+    addRuns(0, map.width, 0, map.height, map.width, map.height, &WindowSet::ssim);
+    addRuns(0, width, 0, height, width, height, &WindowSet::gray);
+    addRuns(1, width - 1, 1, height - 1, width, height, &WindowSet::sobel);
+    return sets;
+}
+
+}  // namespace
+
+TEST(RegionScorer, PartitionScoresAddUpToEvaluateToTheBit) {
+    const MetricParameters p = searchLike();
+    for (const auto& [width, height] : {std::pair{64, 48}, std::pair{131, 77}}) {
+        const TestImage reference = images::generateNoise(width, height, 4, 1);
+        TestImage candidate = images::generateNoise(width, height, 4, 2);
+        // Half the candidate equals the reference: windows there are exactly 1.
+        for (int y = 0; y < height / 2; ++y) {
+            std::copy_n(reference.at(0, y), width * 4, candidate.at(0, y));
+        }
+        const MetricResult expected = evaluate(candidate.view(), reference.view(), p);
+        RegionScorer scorer(reference.view(), p);
+        auto work = scorer.makeWork();
+        scorer.loadPixels(*work, candidate.view(), 0, 0, width, height);
+        for (int pieces : {1, 3, 7}) {
+            WindowTotals totals = scorer.emptyTotals();
+            for (const WindowSet& set : gridPartition(width, height, scorer.ssimMapSize(), pieces)) {
+                WindowSetScore score;
+                scorer.score(*work, set, score);
+                totals.add(score, 1);
+            }
+            const MetricResult got = scorer.result(totals);
+            SCOPED_TRACE(std::to_string(width) + "x" + std::to_string(height) + " in " + std::to_string(pieces) + "^2 sets");
+            EXPECT_EQ(got.ssim, expected.ssim);
+            EXPECT_EQ(got.boundaryEntropy.candidate, expected.boundaryEntropy.candidate);
+            EXPECT_EQ(got.informationEntropy.candidate, expected.informationEntropy.candidate);
+            EXPECT_EQ(got.fitness, expected.fitness);
+            EXPECT_LT(got.fitness, 1.0);
+        }
+    }
+}
+
+TEST(RegionScorer, RemovingAScoreUndoesIt) {
+    const MetricParameters p = searchLike();
+    const TestImage reference = images::generateNoise(40, 40, 3, 4);
+    const TestImage other = images::generateNoise(40, 40, 3, 5);
+    RegionScorer scorer(reference.view(), p);
+    auto work = scorer.makeWork();
+    const std::vector<WindowSet> sets = gridPartition(40, 40, scorer.ssimMapSize(), 2);
+    // The reference's scores, then one set swapped to the other image's and back.
+    scorer.loadPixels(*work, reference.view(), 0, 0, 40, 40);
+    WindowTotals totals = scorer.emptyTotals();
+    std::vector<WindowSetScore> scores(sets.size());
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+        scorer.score(*work, sets[k], scores[k]);
+        totals.add(scores[k], 1);
+    }
+    EXPECT_EQ(scorer.result(totals).fitness, 1.0);
+    scorer.loadPixels(*work, other.view(), 0, 0, 40, 40);
+    WindowSetScore swapped;
+    scorer.score(*work, sets[1], swapped);
+    totals.add(scores[1], -1);
+    totals.add(swapped, 1);
+    EXPECT_LT(scorer.result(totals).fitness, 1.0);
+    totals.add(swapped, -1);
+    totals.add(scores[1], 1);
+    EXPECT_EQ(scorer.result(totals).fitness, 1.0);
+}
+
+TEST(RegionScorer, RefusesWhatIsNotAWindowSum) {
+    const TestImage reference = images::generateNoise(16, 16, 4, 1);
+    MetricParameters withPrecision;  // precision/recall on by default
+    EXPECT_FALSE(RegionScorer::supports(withPrecision));
+    EXPECT_THROW(RegionScorer(reference.view(), withPrecision), MetricError);
+    MetricParameters paper = searchLike();
+    paper.boundaryEntropyMode = EntropyMode::Paper;
+    EXPECT_FALSE(RegionScorer::supports(paper));
+    paper.boundaryEntropyWeight = 0;  // not computed: no longer matters
+    EXPECT_TRUE(RegionScorer::supports(paper));
+    RegionScorer scorer(reference.view(), searchLike());
+    auto work = scorer.makeWork();
+    const TestImage wrongSize = images::generateNoise(15, 16, 4, 1);
+    EXPECT_THROW(scorer.loadPixels(*work, wrongSize.view(), 0, 0, 15, 16), MetricError);
+}
