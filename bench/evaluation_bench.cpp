@@ -8,10 +8,12 @@
 // Candidates: an endless random walk from the all-finest combination, 1–3 objects changing per
 // step; each path continues its own walk, so no candidate sequence is replayed to an evaluator
 // that kept scores from it (the window groups would answer a replayed walk from memory).
-// fast_path is one evaluator over the whole run: a long search's steady state.
+// fast_path is one evaluator over the whole run (the default PartCaching::Auto): a long
+// search's steady state.
 // fast_path_first1000 starts a new evaluator (not timed) and a new walk every 1000 candidates:
 // the start of a search, before many group scores are kept.
-// Variants of the fast path in the same run: fast_path_owned uses the owned windows instead of
+// Variants of the fast path in the same run: fast_path_groups always uses the window groups
+// (PartCaching::Groups), fast_path_owned the owned windows instead of
 // the groups (PartCaching::On, the default before the groups); fast_path_all_metrics also
 // computes precision/recall (which the groups do not cover: owned windows); fast_path_bounds
 // re-scores whole object rectangles (DirtyRegions::ObjectBounds); fast_path_no_parts is the fast
@@ -55,6 +57,7 @@ struct Prepared {
     std::unique_ptr<evaluation::ViewSetup> setup;
     metrics::MetricParameters parameters;  // what a search scores
     std::unique_ptr<evaluation::LayerEvaluator> fast;
+    std::unique_ptr<evaluation::LayerEvaluator> fastGroups;      // PartCaching::Groups
     std::unique_ptr<evaluation::LayerEvaluator> fastOwned;       // PartCaching::On
     std::unique_ptr<evaluation::LayerEvaluator> fastBounds;
     std::unique_ptr<evaluation::LayerEvaluator> fastNoParts;     // PartCaching::Off
@@ -95,6 +98,8 @@ Prepared& prepared(const std::string& key) {
     const metrics::MetricParameters& parameters = p.parameters;
     using evaluation::DirtyRegions, evaluation::PartCaching, evaluation::LayerEvaluator;
     p.fast = std::make_unique<LayerEvaluator>(*p.setup, parameters, 1);
+    p.fastGroups = std::make_unique<LayerEvaluator>(*p.setup, parameters, 1, DirtyRegions::ChangedPixels,
+                                                    LayerEvaluator::kDefaultStates, PartCaching::Groups);
     p.fastOwned = std::make_unique<LayerEvaluator>(*p.setup, parameters, 1, DirtyRegions::ChangedPixels,
                                                    LayerEvaluator::kDefaultStates, PartCaching::On);
     p.fastBounds = std::make_unique<LayerEvaluator>(*p.setup, parameters, 1, DirtyRegions::ObjectBounds);
@@ -160,6 +165,11 @@ void fastPathFirst1000(benchmark::State& state, const std::string& sceneName) {
     addCounters(state, p, *evaluator);
 }
 
+void fastPathGroups(benchmark::State& state, const std::string& sceneName) {
+    Prepared& p = prepared(sceneName);
+    evaluatePath(state, p, *p.fastGroups, "groups");
+}
+
 void fastPathOwned(benchmark::State& state, const std::string& sceneName) {
     Prepared& p = prepared(sceneName);
     evaluatePath(state, p, *p.fastOwned, "owned");
@@ -211,6 +221,7 @@ int main(int argc, char** argv) {
         using Path = void (*)(benchmark::State&, const std::string&);
         const std::pair<const char*, Path> paths[] = {{"fast_path/", fastPath},
                                                       {"fast_path_first1000/", fastPathFirst1000},
+                                                      {"fast_path_groups/", fastPathGroups},
                                                       {"fast_path_owned/", fastPathOwned},
                                                       {"fast_path_bounds/", fastPathBounds},
                                                       {"fast_path_no_parts/", fastPathNoParts},

@@ -227,13 +227,24 @@ LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricPara
     : mSetup(setup), mParameters(parameters), mThreads(std::max(threads, 1)) {
     const bool changedPixels = regions == DirtyRegions::ChangedPixels;
     // Groups need a fitness made only of window sums; otherwise the owned windows serve.
-    if (caching == PartCaching::Groups && !(changedPixels && metrics::RegionScorer::supports(parameters))) {
+    const bool automatic = caching == PartCaching::Auto;
+    if ((automatic || caching == PartCaching::Groups) &&
+        !(changedPixels && metrics::RegionScorer::supports(parameters))) {
         caching = PartCaching::On;
     }
-    const int count = std::max(states, mThreads);
+    if (automatic && caching == PartCaching::Auto) caching = PartCaching::Groups;
     if (caching == PartCaching::Groups) {
         mScorer = std::make_unique<metrics::RegionScorer>(viewOf(setup.reference()), parameters);
         mGroups = std::make_unique<detail::WindowGroups>(setup, *mScorer, groupCacheBytes);
+        const std::size_t objects = std::max<std::size_t>(setup.variableObjects().size(), 1);
+        if (automatic && mGroups->size() > std::size_t(kMaxGroupsPerObject) * objects) {
+            mGroups.reset();
+            mScorer.reset();
+            caching = PartCaching::On;
+        }
+    }
+    const int count = std::max(states, mThreads);
+    if (mGroups) {
         for (int t = 0; t < count; ++t) {
             mGroupStates.push_back(std::make_unique<detail::GroupState>(setup, *mScorer, *mGroups));
         }

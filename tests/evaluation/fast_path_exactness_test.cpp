@@ -154,12 +154,15 @@ TEST(FastPathExactness, WindowGroupsMatchFromScratchScoresToTheBit) {
             evaluation::ViewSetup setup(scene, camera, renderer);
             const std::vector<int> counts = setup.levelCounts();
             ASSERT_GE(counts.size(), 2u) << camera.name;
-            LayerEvaluator grouped(setup, parameters);
+            LayerEvaluator grouped(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
+                                   LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups);
+            LayerEvaluator automatic(setup, parameters);
             LayerEvaluator owned(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
                                  LayerEvaluator::kDefaultStates, evaluation::PartCaching::On);
             LayerEvaluator unkept(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
                                   LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups, 0);
-            LayerEvaluator threaded(setup, parameters, 3);
+            LayerEvaluator threaded(setup, parameters, 3, evaluation::DirtyRegions::ChangedPixels,
+                                    LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups);
             evaluation::FullRenderEvaluator full(setup, renderer, parameters);
             const std::vector<optimizer::Combination> walk = randomWalk(counts, 80, 13);
             std::vector<optimizer::Score> batch(walk.size());
@@ -170,6 +173,7 @@ TEST(FastPathExactness, WindowGroupsMatchFromScratchScoresToTheBit) {
                 expectSameScore(score, owned.evaluate(walk[k]), what + " vs owned windows");
                 expectSameScore(score, unkept.evaluate(walk[k]), what + " vs nothing kept");
                 expectSameScore(score, batch[k], what + " vs threaded batch");
+                expectSameScore(score, automatic.evaluate(walk[k]), what + " vs automatic choice");
                 if (k % 8 == 0) {
                     const renderer::Frame expected = freshComposite(setup, walk[k]);
                     ASSERT_EQ(grouped.imageOf(walk[k]).rgba, expected.rgba) << what;
@@ -186,6 +190,10 @@ TEST(FastPathExactness, WindowGroupsMatchFromScratchScoresToTheBit) {
             EXPECT_GT(stats.entries, std::uint64_t(stats.groups)) << camera.name;
             EXPECT_EQ(unkept.groupCacheStats().entries, 0u) << camera.name;
             EXPECT_EQ(owned.groupCacheStats().groups, 0) << camera.name;
+            // Auto: groups up to kMaxGroupsPerObject per searched object, owned windows beyond.
+            const bool fewGroups = stats.groups <= LayerEvaluator::kMaxGroupsPerObject * int(counts.size());
+            EXPECT_EQ(automatic.groupCacheStats().groups > 0, fewGroups) << camera.name;
+            EXPECT_EQ(automatic.partCacheStats().parts > 0, !fewGroups) << camera.name;
             if (camera.name == "dense") {
                 EXPECT_GT(stats.multiObjectSsimWindows, 0u);
                 EXPECT_GE(stats.largestGroup, 3);

@@ -133,7 +133,12 @@ enum class DirtyRegions {
 // spread over up to `threads` threads, each state used by one thread at a time.
 //
 // How the fast path scores a candidate (ChangedPixels only; docs/optimizer.md):
-// - Groups (the default): every metric window depends on the levels of the searched objects
+// - Auto (the default): Groups where the view has at most kMaxGroupsPerObject groups per
+//   searched object, else On. Many groups per object (many small objects whose seams meet in
+//   many combinations) mean few kept scores are found again early in a search, and a new
+//   group score is computed over the whole group, where On computes only around the changed
+//   pixels (forest `edge`, `overview`: slower with groups, docs/optimizer.md).
+// - Groups: every metric window depends on the levels of the searched objects
 //   whose layers reach its pixels; windows with the same objects form a group, and a group's
 //   score (its SSIM windows' exact sum and its histogram counts) is kept per combination of
 //   those objects' levels, shared by all states. A candidate re-scores only the groups of the
@@ -147,7 +152,7 @@ enum class DirtyRegions {
 //   meet are computed per candidate, on the recomposited frame.
 // - Off: every changed pixel's windows are computed per candidate.
 // Scores are the same, bit for bit, whichever is used.
-enum class PartCaching { Groups, On, Off };
+enum class PartCaching { Auto, Groups, On, Off };
 
 // The window groups' figures (zeros without them).
 struct GroupCacheStats {
@@ -170,9 +175,11 @@ public:
     // Memory the window groups keep scores in, at most: beyond it new scores are still
     // computed and used, but not kept.
     static constexpr std::size_t kGroupCacheBytes = std::size_t(256) << 20;
+    // PartCaching::Auto's limit (measured on the forest's views, docs/optimizer.md).
+    static constexpr int kMaxGroupsPerObject = 10;
     LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads = 1,
                    DirtyRegions regions = DirtyRegions::ChangedPixels, int states = kDefaultStates,
-                   PartCaching caching = PartCaching::Groups, std::size_t groupCacheBytes = kGroupCacheBytes);
+                   PartCaching caching = PartCaching::Auto, std::size_t groupCacheBytes = kGroupCacheBytes);
     ~LayerEvaluator() override;
 
     optimizer::Score evaluate(const optimizer::Combination& combination) override;
