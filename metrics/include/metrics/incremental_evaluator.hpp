@@ -9,9 +9,10 @@
 // pixel of it, the histogram entries and classes inside it.
 //
 // Exactness: every per-pixel value is computed by the same code in the full and the
-// incremental path, histograms and counts are integers, and map sums are re-pooled per tile
-// and row in a fixed order, so after any sequence of updates result() equals a from-scratch
-// evaluate() of the final image (to the bit, and tested to 1e-9).
+// incremental path, histograms and counts are integers, and the SSIM map is pooled in fixed
+// point (exact integer sums; the paper's real-valued entropy terms per tile and row in a fixed
+// order), so after any sequence of updates result() equals a from-scratch evaluate() of the
+// final image (to the bit, and tested to 1e-9).
 //
 // Memory: about 40 bytes per pixel with every component on (SSIM alone: 32). No allocation
 // after construction: setCandidate, updateRect and result never allocate. One evaluator is
