@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -82,6 +83,68 @@ struct GpuMesh {
     int material = -1;
 };
 
+// The pixels (top-left origin) where `object` at `level` can put fragments: the rectangle of
+// its vertices' projections, grown by 2 pixels (rasterization rules, the vertex shader's own
+// float rounding), clipped to the frame. A clipped triangle stays inside the projection of its
+// vertices when all lie in front of the eye. Empty when every vertex is outside one clip plane
+// (nothing is drawn: each plane is linear in clip coordinates, so the triangles are outside
+// too); the whole frame when a vertex is at or behind the eye plane (no finite projection).
+PixelRect projectedRect(const scenes::Object& object, int level, const glm::mat4& viewProjection, int width,
+                        int height) {
+    const glm::mat4 transform = viewProjection * object.transform;
+    const PixelRect frame{0, 0, width, height};
+    std::size_t vertices = 0;
+    std::size_t outside[6] = {};
+    bool unbounded = false;
+    float minX = 0, maxX = 0, minY = 0, maxY = 0;
+    for (const scenes::Mesh& mesh : object.levels[std::size_t(level)].meshes) {
+        if (mesh.indices.empty()) continue;  // not uploaded, never drawn
+        for (const glm::vec3& position : mesh.positions) {
+            const glm::vec4 clip = transform * glm::vec4(position, 1.0f);
+            outside[0] += clip.x < -clip.w;
+            outside[1] += clip.x > clip.w;
+            outside[2] += clip.y < -clip.w;
+            outside[3] += clip.y > clip.w;
+            outside[4] += clip.z < -clip.w;
+            outside[5] += clip.z > clip.w;
+            if (!(clip.w > 1e-6f)) {
+                unbounded = true;
+                continue;
+            }
+            const float x = clip.x / clip.w, y = clip.y / clip.w;
+            if (vertices == 0 || x < minX) minX = x;
+            if (vertices == 0 || x > maxX) maxX = x;
+            if (vertices == 0 || y < minY) minY = y;
+            if (vertices == 0 || y > maxY) maxY = y;
+            ++vertices;
+        }
+    }
+    std::size_t total = vertices;
+    if (unbounded) {
+        // Behind-the-eye vertices were not counted in `vertices`; count them for the plane test.
+        total = 0;
+        for (const scenes::Mesh& mesh : object.levels[std::size_t(level)].meshes) {
+            if (!mesh.indices.empty()) total += mesh.positions.size();
+        }
+    }
+    if (total == 0) return {};
+    for (std::size_t plane = 0; plane < 6; ++plane) {
+        if (outside[plane] == total) return {};
+    }
+    if (unbounded || !std::isfinite(minX) || !std::isfinite(maxX) || !std::isfinite(minY) || !std::isfinite(maxY)) {
+        return frame;
+    }
+    // Window coordinates as the viewport transform computes them, clamped before converting.
+    auto toPixels = [](float ndc, int size) {
+        return std::clamp(double(ndc) * 0.5 * size + 0.5 * size, -4.0, double(size) + 4.0);
+    };
+    const int x0 = int(std::floor(toPixels(minX, width))) - 2, x1 = int(std::ceil(toPixels(maxX, width))) + 2;
+    // OpenGL's window rows count from the bottom.
+    const int y0 = height - int(std::ceil(toPixels(maxY, height))) - 2;
+    const int y1 = height - int(std::floor(toPixels(minY, height))) + 2;
+    return {std::max(x0, 0), std::max(y0, 0), std::min(x1, width), std::min(y1, height)};
+}
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -94,6 +157,9 @@ struct Renderer::Impl {
     std::vector<GLuint> textures;
     std::vector<std::vector<std::vector<GpuMesh>>> meshes;  // [object][level][mesh]
     std::vector<std::uint8_t> readbackColor;
+    std::vector<float> readbackDepth;
+    std::vector<std::uint8_t> layerColor;  // renderLayer's bounded readback
+    std::vector<float> layerDepth;
     std::string vendor, rendererName, version;
 
     Impl(const scenes::Scene& s, RenderSettings st) : scene(s), settings(st) {}
@@ -200,11 +266,20 @@ struct Renderer::Impl {
         }
     }
 
-    // Draws the given (object, level) pairs; level kNotDrawn skips the object.
-    void draw(const scenes::Combination& combination, const scenes::Camera& camera) {
+    // Draws the given (object, level) pairs; level kNotDrawn skips the object. With `scissor`
+    // (top-left origin), clears and draws only inside it: a layer's pixels outside its
+    // projected rectangle are never read.
+    void draw(const scenes::Combination& combination, const scenes::Camera& camera,
+              const PixelRect* scissor = nullptr) {
         platform->makeCurrent();
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
         glViewport(0, 0, settings.width, settings.height);
+        if (scissor) {
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(scissor->x0, settings.height - scissor->y1, scissor->width(), scissor->height());
+        } else {
+            glDisable(GL_SCISSOR_TEST);
+        }
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDisable(GL_CULL_FACE);
@@ -246,7 +321,27 @@ struct Renderer::Impl {
             }
         }
         glBindVertexArray(0);
+        glDisable(GL_SCISSOR_TEST);
         checkGl("draw");
+    }
+
+    // Reads `rect` (top-left origin, inside the frame) of color and depth into `color` and
+    // `depth`, rows top to bottom.
+    void readBackRect(const PixelRect& rect, std::vector<std::uint8_t>& color, std::vector<float>& depth) {
+        const int w = rect.width(), h = rect.height();
+        readbackColor.resize(std::size_t(w) * h * 4);
+        readbackDepth.resize(std::size_t(w) * h);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(rect.x0, settings.height - rect.y1, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readbackColor.data());
+        glReadPixels(rect.x0, settings.height - rect.y1, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, readbackDepth.data());
+        checkGl("glReadPixels");
+        color.resize(readbackColor.size());
+        depth.resize(readbackDepth.size());
+        for (int y = 0; y < h; ++y) {
+            const std::size_t from = std::size_t(h - 1 - y) * w, to = std::size_t(y) * w;
+            std::memcpy(&color[to * 4], &readbackColor[from * 4], std::size_t(w) * 4);
+            std::memcpy(&depth[to], &readbackDepth[from], std::size_t(w) * sizeof(float));
+        }
     }
 
     // Reads color and depth back, rows flipped to top-to-bottom.
@@ -362,35 +457,45 @@ Layer Renderer::renderLayer(int object, int level, const scenes::Camera& camera)
         level >= static_cast<int>(scene.objects[object].levels.size())) {
         throw RenderError("renderLayer: no level " + std::to_string(level) + " of object " + std::to_string(object));
     }
-    scenes::Combination alone(scene.objects.size(), scenes::kNotDrawn);
-    alone[object] = level;
-    Frame frame;
-    mImpl->draw(alone, camera);
-    mImpl->readBack(frame);
     Layer layer;
     layer.object = object;
     layer.level = level;
-    PixelRect rect{frame.width, frame.height, 0, 0};
-    for (int y = 0; y < frame.height; ++y) {
-        for (int x = 0; x < frame.width; ++x) {
-            if (frame.depth[std::size_t(y) * frame.width + x] < 1.0f) {
-                rect.x0 = std::min(rect.x0, x);
-                rect.y0 = std::min(rect.y0, y);
-                rect.x1 = std::max(rect.x1, x + 1);
-                rect.y1 = std::max(rect.y1, y + 1);
+    const int width = mImpl->settings.width, height = mImpl->settings.height;
+    const glm::mat4 viewProjection =
+        scenes::projectionMatrix(camera, float(width) / float(height)) * scenes::viewMatrix(camera);
+    // Only the pixels the object can reach are cleared, drawn and read back: most objects of a
+    // large scene are small on screen or out of view (the same pixels as a whole-frame render).
+    const PixelRect bound = projectedRect(scene.objects[object], level, viewProjection, width, height);
+    if (bound.empty()) return layer;
+    scenes::Combination alone(scene.objects.size(), scenes::kNotDrawn);
+    alone[object] = level;
+    mImpl->draw(alone, camera, &bound);
+    std::vector<std::uint8_t>& color = mImpl->layerColor;
+    std::vector<float>& depth = mImpl->layerDepth;
+    mImpl->readBackRect(bound, color, depth);
+    const int boundWidth = bound.width();
+    PixelRect rect{bound.x1, bound.y1, bound.x0, bound.y0};
+    for (int y = 0; y < bound.height(); ++y) {
+        const float* row = &depth[std::size_t(y) * boundWidth];
+        for (int x = 0; x < boundWidth; ++x) {
+            if (row[x] < 1.0f) {
+                rect.x0 = std::min(rect.x0, bound.x0 + x);
+                rect.y0 = std::min(rect.y0, bound.y0 + y);
+                rect.x1 = std::max(rect.x1, bound.x0 + x + 1);
+                rect.y1 = std::max(rect.y1, bound.y0 + y + 1);
                 ++layer.coveredPixels;
             }
         }
     }
-    if (layer.coveredPixels == 0) rect = PixelRect{};
+    if (layer.coveredPixels == 0) return layer;
     layer.rect = rect;
     const int w = rect.width(), h = rect.height();
     layer.rgba.resize(std::size_t(w) * h * 4);
     layer.depth.resize(std::size_t(w) * h);
     for (int y = 0; y < h; ++y) {
-        const std::size_t source = std::size_t(rect.y0 + y) * frame.width + rect.x0;
-        std::memcpy(&layer.rgba[std::size_t(y) * w * 4], &frame.rgba[source * 4], std::size_t(w) * 4);
-        std::memcpy(&layer.depth[std::size_t(y) * w], &frame.depth[source], std::size_t(w) * sizeof(float));
+        const std::size_t source = std::size_t(rect.y0 - bound.y0 + y) * boundWidth + std::size_t(rect.x0 - bound.x0);
+        std::memcpy(&layer.rgba[std::size_t(y) * w * 4], &color[source * 4], std::size_t(w) * 4);
+        std::memcpy(&layer.depth[std::size_t(y) * w], &depth[source], std::size_t(w) * sizeof(float));
     }
     layer.rowSpans = coveredRowSpans(layer);
     return layer;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <random>
 
@@ -132,6 +133,76 @@ TEST(Renderer, CompositeOfLayersEqualsFullRender) {
             EXPECT_LE(differ, 0.001) << camera.name;
             EXPECT_EQ(full.depth, composed.depth) << camera.name;
         }
+    }
+}
+
+// renderLayer clears, draws and reads back only the object's projected rectangle, and nothing
+// for an object out of view: the layer must hold exactly the pixels of the object rendered
+// alone over the whole frame. Cameras: every built-in view of the harbor and the forest, one
+// inside object 1 (the harbor's ship, a tree; vertices behind the eye: the whole frame is read)
+// and one looking away.
+TEST(Renderer, LayerEqualsTheObjectRenderedAloneOverTheWholeFrame) {
+    for (const char* name : {"harbor", "forest"}) {
+        scenes::Scene scene = scenes::loadScene(name);
+        renderer::RenderSettings settings;
+        settings.width = 96;
+        settings.height = 80;  // not square: rows and columns must not be swapped
+        renderer::Renderer renderer(scene, settings);
+        std::vector<scenes::Camera> cameras = scene.views;
+        const scenes::Bounds object1 = scenes::worldBounds(scene.objects[1], 0);
+        scenes::Camera inside = scene.views[0];
+        inside.position = object1.sphereCenter;
+        inside.target = object1.sphereCenter + glm::vec3(1.0f, -0.2f, 0.3f);
+        cameras.push_back(inside);
+        scenes::Camera away = scene.views[0];
+        away.target = away.position + (away.position - scene.views[0].target);
+        cameras.push_back(away);
+        std::size_t emptyLayers = 0, layers = 0;
+        for (const scenes::Camera& camera : cameras) {
+            for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+                for (std::size_t l = 0; l < scene.objects[o].levels.size(); ++l) {
+                    scenes::Combination alone(scene.objects.size(), scenes::kNotDrawn);
+                    alone[o] = int(l);
+                    const renderer::Frame whole = renderer.render(alone, camera);
+                    const renderer::Layer layer = renderer.renderLayer(int(o), int(l), camera);
+                    renderer::PixelRect expected{whole.width, whole.height, 0, 0};
+                    std::uint64_t covered = 0;
+                    for (int y = 0; y < whole.height; ++y) {
+                        for (int x = 0; x < whole.width; ++x) {
+                            if (!(whole.depth[std::size_t(y) * whole.width + x] < 1.0f)) continue;
+                            ++covered;
+                            expected = {std::min(expected.x0, x), std::min(expected.y0, y),
+                                        std::max(expected.x1, x + 1), std::max(expected.y1, y + 1)};
+                        }
+                    }
+                    const std::string where = std::string(name) + " " + camera.name + " object " +
+                                              std::to_string(o) + " level " + std::to_string(l);
+                    ++layers;
+                    ASSERT_EQ(layer.coveredPixels, covered) << where;
+                    if (covered == 0) {
+                        ++emptyLayers;
+                        EXPECT_TRUE(layer.rect.empty()) << where;
+                        continue;
+                    }
+                    ASSERT_EQ(layer.rect.x0, expected.x0) << where;
+                    ASSERT_EQ(layer.rect.y0, expected.y0) << where;
+                    ASSERT_EQ(layer.rect.x1, expected.x1) << where;
+                    ASSERT_EQ(layer.rect.y1, expected.y1) << where;
+                    const int w = layer.rect.width();
+                    for (int y = 0; y < layer.rect.height(); ++y) {
+                        const std::size_t at = std::size_t(layer.rect.y0 + y) * whole.width + layer.rect.x0;
+                        ASSERT_EQ(0, std::memcmp(&layer.rgba[std::size_t(y) * w * 4], &whole.rgba[at * 4],
+                                                 std::size_t(w) * 4))
+                            << where << " row " << y;
+                        ASSERT_EQ(0, std::memcmp(&layer.depth[std::size_t(y) * w], &whole.depth[at],
+                                                 std::size_t(w) * sizeof(float)))
+                            << where << " row " << y;
+                    }
+                }
+            }
+        }
+        EXPECT_GT(emptyLayers, 0u) << name << ": the camera looking away should see nothing";
+        EXPECT_LT(emptyLayers, layers) << name;
     }
 }
 
