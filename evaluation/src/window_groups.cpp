@@ -227,7 +227,8 @@ GroupState::GroupState(const ViewSetup& setup, const metrics::RegionScorer& scor
     mTileEpoch.assign(std::size_t(mTilesX) * mTilesY, 0);
     mGroupEpoch.assign(groups.size(), 0);
     mApplied.resize(groups.size());
-    for (std::size_t g = 0; g < groups.size(); ++g) rescore(g);
+    for (std::size_t g = 0; g < groups.size(); ++g) mAffected.push_back(g);
+    rescore(mAffected);
 }
 
 void GroupState::composite(const renderer::PixelRect& rect) {
@@ -254,19 +255,40 @@ void GroupState::composite(const renderer::PixelRect& rect) {
     }
 }
 
-void GroupState::rescore(std::size_t g) {
-    WindowGroup& group = mGroups.group(g);
-    const std::uint64_t key = group.key(mCurrent);
-    std::shared_ptr<const metrics::WindowSetScore> score = mGroups.find(g, key);
-    if (!score) {
-        composite(group.inputs);
-        auto fresh = std::make_shared<metrics::WindowSetScore>();
-        mScorer.score(*mWork, group.windows, *fresh);
-        score = mGroups.keep(g, key, std::move(fresh));
-    }
+void GroupState::apply(std::size_t g, std::shared_ptr<const metrics::WindowSetScore> score) {
     if (mApplied[g]) mTotals.add(*mApplied[g], -1);
     mTotals.add(*score, 1);
     mApplied[g] = std::move(score);
+}
+
+void GroupState::rescore(std::span<const std::size_t> groups) {
+    // Kept scores first; the rest are composited and scored together, so that windows of
+    // groups that interleave are computed once (RegionScorer::scoreMany).
+    mMisses.clear();
+    for (std::size_t g : groups) {
+        const std::uint64_t key = mGroups.group(g).key(mCurrent);
+        std::shared_ptr<const metrics::WindowSetScore> score = mGroups.find(g, key);
+        if (score) {
+            apply(g, std::move(score));
+        } else {
+            mMisses.push_back({g, key});
+        }
+    }
+    if (mMisses.empty()) return;
+    mMissSets.clear();
+    mMissScores.clear();
+    mMissOuts.clear();
+    for (const Miss& miss : mMisses) {
+        const WindowGroup& group = mGroups.group(miss.group);
+        composite(group.inputs);
+        mMissSets.push_back(&group.windows);
+        mMissScores.push_back(std::make_shared<metrics::WindowSetScore>());
+        mMissOuts.push_back(mMissScores.back().get());
+    }
+    mScorer.scoreMany(*mWork, mMissSets, mMissOuts);
+    for (std::size_t i = 0; i < mMisses.size(); ++i) {
+        apply(mMisses[i].group, mGroups.keep(mMisses[i].group, mMisses[i].key, std::move(mMissScores[i])));
+    }
 }
 
 void GroupState::moveTo(const optimizer::Combination& combination) {
@@ -284,7 +306,7 @@ void GroupState::moveTo(const optimizer::Combination& combination) {
             mAffected.push_back(g);
         }
     }
-    for (std::size_t g : mAffected) rescore(g);
+    rescore(mAffected);
 }
 
 const renderer::Frame& GroupState::image() {

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <unordered_map>
 #include <vector>
 
@@ -93,7 +94,9 @@ private:
     // Composites (and loads into the scorer's gray) every tile of `rect` not yet composited for
     // the current combination.
     void composite(const renderer::PixelRect& rect);
-    void rescore(std::size_t g);
+    // Re-scores `groups` for the current combination: kept scores, else computed together.
+    void rescore(std::span<const std::size_t> groups);
+    void apply(std::size_t g, std::shared_ptr<const metrics::WindowSetScore> score);
 
     const ViewSetup& mSetup;
     const metrics::RegionScorer& mScorer;
@@ -108,6 +111,14 @@ private:
     std::vector<std::uint64_t> mTileEpoch;     // per tile, the epoch it was composited in
     std::vector<std::uint64_t> mGroupEpoch;    // per group, the epoch it was last re-scored in
     std::vector<std::size_t> mAffected;
+    struct Miss {
+        std::size_t group;
+        std::uint64_t key;
+    };
+    std::vector<Miss> mMisses;
+    std::vector<const metrics::WindowSet*> mMissSets;
+    std::vector<std::shared_ptr<metrics::WindowSetScore>> mMissScores;
+    std::vector<metrics::WindowSetScore*> mMissOuts;
     int mTilesX = 0, mTilesY = 0;
 };
 

@@ -15,6 +15,10 @@ namespace {
 // SSIM windows of a set are computed in bands of this many map rows, over each band's
 // column extent (a set is often a thin seam between objects: short bands waste less).
 constexpr int kBandRows = 16;
+// scoreMany joins the runs of one band into one computed rectangle when they are at most this
+// many columns apart: a separate rectangle costs its own horizontal-pass margin (window - 1
+// columns) and a call.
+constexpr int kJoinColumns = 16;
 }  // namespace
 
 void WindowTotals::add(const WindowSetScore& score, int sign) {
@@ -44,6 +48,8 @@ public:
     std::vector<std::uint16_t> sobelBins;
     std::array<std::uint32_t, 256> grayCounts{};
     std::vector<std::uint32_t> sobelCounts;
+    std::vector<std::size_t> cursors;  // scoreMany: per set, its first SSIM run not yet summed
+    std::vector<WindowRun> bandRuns;   // scoreMany: one band's runs of every set
 };
 
 bool RegionScorer::supports(const MetricParameters& parameters) {
@@ -166,6 +172,14 @@ void RegionScorer::score(Work& work, const WindowSet& set, WindowSetScore& out) 
             }
         }
     }
+    histograms(work, set, out);
+}
+
+void RegionScorer::histograms(Work& work, const WindowSet& set, WindowSetScore& out) const {
+    const State& s = *mState;
+    out.gray.clear();
+    out.sobel.clear();
+    const std::size_t stride = std::size_t(s.width);
     if (s.informationOn) {
         for (const WindowRun& run : set.gray) {
             detail::grayBinsRow(work.gray.data() + std::size_t(run.y) * stride + run.x0, run.x1 - run.x0, s.grayScale,
@@ -190,6 +204,71 @@ void RegionScorer::score(Work& work, const WindowSet& set, WindowSetScore& out) 
             work.sobelCounts[b] = 0;
         }
     }
+}
+
+void RegionScorer::scoreMany(Work& work, std::span<const WindowSet* const> sets,
+                             std::span<WindowSetScore* const> outs) const {
+    const State& s = *mState;
+    if (sets.size() != outs.size()) throw MetricError("scoreMany: as many scores as sets are needed");
+    if (sets.size() == 1) {
+        score(work, *sets[0], *outs[0]);
+        return;
+    }
+    for (WindowSetScore* out : outs) out->ssim = 0;
+    if (s.ssimOn) {
+        const std::size_t mapWidth = std::size_t(s.kernel.mapWidth);
+        const std::size_t stride = std::size_t(s.width);
+        work.cursors.assign(sets.size(), 0);
+        for (;;) {
+            // The next band any set has runs in, and all those runs.
+            int band = -1;
+            for (std::size_t k = 0; k < sets.size(); ++k) {
+                if (work.cursors[k] == sets[k]->ssim.size()) continue;
+                const int b = sets[k]->ssim[work.cursors[k]].y / kBandRows;
+                if (band < 0 || b < band) band = b;
+            }
+            if (band < 0) break;
+            work.bandRuns.clear();
+            for (std::size_t k = 0; k < sets.size(); ++k) {
+                const std::vector<WindowRun>& runs = sets[k]->ssim;
+                for (std::size_t j = work.cursors[k]; j < runs.size() && runs[j].y / kBandRows == band; ++j) {
+                    work.bandRuns.push_back(runs[j]);
+                }
+            }
+            std::sort(work.bandRuns.begin(), work.bandRuns.end(),
+                      [](const WindowRun& a, const WindowRun& b) { return a.x0 < b.x0; });
+            // Clusters of runs less than kJoinColumns apart: one rectangle of windows each,
+            // written at its place in the band buffer (row y at (y - bandTop) * mapWidth).
+            const int bandTop = band * kBandRows;
+            for (std::size_t i = 0; i < work.bandRuns.size();) {
+                int x0 = work.bandRuns[i].x0, x1 = work.bandRuns[i].x1;
+                int y0 = work.bandRuns[i].y, y1 = work.bandRuns[i].y + 1;
+                std::size_t j = i + 1;
+                while (j < work.bandRuns.size() && work.bandRuns[j].x0 <= x1 + kJoinColumns) {
+                    x1 = std::max(x1, work.bandRuns[j].x1);
+                    y0 = std::min(y0, work.bandRuns[j].y);
+                    y1 = std::max(y1, work.bandRuns[j].y + 1);
+                    ++j;
+                }
+                const std::size_t at = std::size_t(y0) * mapWidth + std::size_t(x0);
+                detail::ssimWindows(work.gray.data(), s.referenceGray.data(), stride, s.kernel, x0, y0, x1, y1,
+                                    s.referenceMean.data() + at, s.referenceVariance.data() + at, mapWidth,
+                                    work.scratch, work.band.data() + std::size_t(y0 - bandTop) * mapWidth + x0,
+                                    mapWidth);
+                i = j;
+            }
+            for (std::size_t k = 0; k < sets.size(); ++k) {
+                const std::vector<WindowRun>& runs = sets[k]->ssim;
+                std::size_t& j = work.cursors[k];
+                for (; j < runs.size() && runs[j].y / kBandRows == band; ++j) {
+                    outs[k]->ssim += detail::ssimFixedSum(
+                        work.band.data() + std::size_t(runs[j].y - bandTop) * mapWidth + std::size_t(runs[j].x0),
+                        runs[j].x1 - runs[j].x0);
+                }
+            }
+        }
+    }
+    for (std::size_t k = 0; k < sets.size(); ++k) histograms(work, *sets[k], *outs[k]);
 }
 
 WindowTotals RegionScorer::emptyTotals() const {

@@ -118,3 +118,62 @@ TEST(RegionScorer, RefusesWhatIsNotAWindowSum) {
     const TestImage wrongSize = images::generateNoise(15, 16, 4, 1);
     EXPECT_THROW(scorer.loadPixels(*work, wrongSize.view(), 0, 0, 15, 16), MetricError);
 }
+
+// scoreMany computes the windows of several sets in shared rectangles; each set must get what
+// score() gives it alone. Sets that interleave on every row (a random owner per run of 1-9
+// windows), runs far from the rest on some rows (rectangles of their own, not at column 0 nor
+// at a band's first row) and a set with no SSIM window.
+TEST(RegionScorer, ScoringSetsTogetherGivesEachSetsOwnScore) {
+    const MetricParameters p = searchLike();
+    const int width = 150, height = 70;
+    const TestImage reference = images::generateNoise(width, height, 4, 8);
+    TestImage candidate = images::generateNoise(width, height, 4, 9);
+    for (int y = 0; y < height / 3; ++y) std::copy_n(reference.at(0, y), width * 4, candidate.at(0, y));
+    RegionScorer scorer(reference.view(), p);
+    auto work = scorer.makeWork();
+    scorer.loadPixels(*work, candidate.view(), 0, 0, width, height);
+    const SsimMapSize map = scorer.ssimMapSize();
+    std::mt19937 random(11);
+    std::vector<WindowSet> sets(6);
+    for (int y = 0; y < map.height; ++y) {
+        for (int x = 0; x < 60;) {
+            const int end = std::min(60, x + 1 + int(random() % 9));
+            sets[random() % 5].ssim.push_back({y, x, end});
+            x = end;
+        }
+        // Runs far from the others (their own rectangles), on some rows only.
+        if (y % 7 < 3) sets[3].ssim.push_back({y, 90, 97});
+        if (y >= 20 && y < 26) sets[4].ssim.push_back({y, 120, std::min(131, map.width)});
+    }
+    sets[5].gray.push_back({3, 10, 40});  // histogram pixels only
+    sets[5].sobel.push_back({4, 10, 40});
+    sets[0].gray.push_back({5, 0, width});
+    std::vector<WindowSetScore> alone(sets.size()), together(sets.size());
+    for (std::size_t k = 0; k < sets.size(); ++k) scorer.score(*work, sets[k], alone[k]);
+    std::vector<const WindowSet*> setPointers;
+    std::vector<WindowSetScore*> outPointers;
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+        setPointers.push_back(&sets[k]);
+        together[k].ssim = 12345;  // overwritten
+        outPointers.push_back(&together[k]);
+    }
+    scorer.scoreMany(*work, setPointers, outPointers);
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+        SCOPED_TRACE("set " + std::to_string(k));
+        EXPECT_TRUE(alone[k].ssim == together[k].ssim);
+        EXPECT_EQ(alone[k].gray, together[k].gray);
+        EXPECT_EQ(alone[k].sobel, together[k].sobel);
+    }
+    EXPECT_TRUE(alone[0].ssim != 0);
+    EXPECT_TRUE(together[5].ssim == 0);
+    // Two sets, one of them empty, and a single set: the same answers.
+    scorer.scoreMany(*work, std::span<const WindowSet* const>(setPointers.data() + 4, 2),
+                     std::span<WindowSetScore* const>(outPointers.data() + 4, 2));
+    EXPECT_TRUE(together[4].ssim == alone[4].ssim);
+    scorer.scoreMany(*work, std::span<const WindowSet* const>(setPointers.data(), 1),
+                     std::span<WindowSetScore* const>(outPointers.data(), 1));
+    EXPECT_TRUE(together[0].ssim == alone[0].ssim);
+    EXPECT_THROW(scorer.scoreMany(*work, std::span<const WindowSet* const>(setPointers.data(), 2),
+                                  std::span<WindowSetScore* const>(outPointers.data(), 1)),
+                 MetricError);
+}

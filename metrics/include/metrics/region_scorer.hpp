@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -81,6 +82,11 @@ public:
     // Scores `set` from the gray values in `work`, which must be loaded over every pixel the
     // set's windows read (SSIM: the window; Sobel: the 3x3 neighbourhood).
     void score(Work& work, const WindowSet& set, WindowSetScore& out) const;
+    // Scores several sets at once (outs[k] for sets[k]), the same values as score() gives each:
+    // the SSIM windows of all of them are computed band by band in shared rectangles, so
+    // windows of sets that interleave are not computed again for each set, nor the margin each
+    // computed rectangle needs.
+    void scoreMany(Work& work, std::span<const WindowSet* const> sets, std::span<WindowSetScore* const> outs) const;
 
     // Zero totals of the right histogram sizes.
     WindowTotals emptyTotals() const;
@@ -95,6 +101,7 @@ public:
     int grayBins() const;             // 256, or 0 when the information entropy is not computed
 
 private:
+    void histograms(Work& work, const WindowSet& set, WindowSetScore& out) const;
     struct State;
     std::unique_ptr<State> mState;
 };
