@@ -31,19 +31,13 @@ bool outsideFrustum(const scenes::Object& object, const glm::mat4& viewProjectio
     const scenes::Bounds& bounds = object.levels[0].stats.bounds;
     if (bounds.empty()) return true;
     const glm::mat4 mvp = viewProjection * object.transform;
-    int outside[6] = {};
+    scenes::ClipPlaneCounts counts;
     for (int corner = 0; corner < 8; ++corner) {
         glm::vec3 p((corner & 1) ? bounds.max.x : bounds.min.x, (corner & 2) ? bounds.max.y : bounds.min.y,
                     (corner & 4) ? bounds.max.z : bounds.min.z);
-        glm::vec4 clip = mvp * glm::vec4(p, 1.0f);
-        outside[0] += clip.x < -clip.w;
-        outside[1] += clip.x > clip.w;
-        outside[2] += clip.y < -clip.w;
-        outside[3] += clip.y > clip.w;
-        outside[4] += clip.z < -clip.w;
-        outside[5] += clip.z > clip.w;
+        counts.add(mvp * glm::vec4(p, 1.0f));
     }
-    return std::any_of(std::begin(outside), std::end(outside), [](int n) { return n == 8; });
+    return counts.allOutsideOnePlane();
 }
 
 }  // namespace

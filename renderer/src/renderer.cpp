@@ -93,20 +93,15 @@ PixelRect projectedRect(const scenes::Object& object, int level, const glm::mat4
                         int height) {
     const glm::mat4 transform = viewProjection * object.transform;
     const PixelRect frame{0, 0, width, height};
-    std::size_t vertices = 0;
-    std::size_t outside[6] = {};
+    std::size_t vertices = 0;  // those in front of the eye plane
+    scenes::ClipPlaneCounts counts;
     bool unbounded = false;
     float minX = 0, maxX = 0, minY = 0, maxY = 0;
     for (const scenes::Mesh& mesh : object.levels[std::size_t(level)].meshes) {
         if (mesh.indices.empty()) continue;  // not uploaded, never drawn
         for (const glm::vec3& position : mesh.positions) {
             const glm::vec4 clip = transform * glm::vec4(position, 1.0f);
-            outside[0] += clip.x < -clip.w;
-            outside[1] += clip.x > clip.w;
-            outside[2] += clip.y < -clip.w;
-            outside[3] += clip.y > clip.w;
-            outside[4] += clip.z < -clip.w;
-            outside[5] += clip.z > clip.w;
+            counts.add(clip);
             if (!(clip.w > 1e-6f)) {
                 unbounded = true;
                 continue;
@@ -119,18 +114,7 @@ PixelRect projectedRect(const scenes::Object& object, int level, const glm::mat4
             ++vertices;
         }
     }
-    std::size_t total = vertices;
-    if (unbounded) {
-        // Behind-the-eye vertices were not counted in `vertices`; count them for the plane test.
-        total = 0;
-        for (const scenes::Mesh& mesh : object.levels[std::size_t(level)].meshes) {
-            if (!mesh.indices.empty()) total += mesh.positions.size();
-        }
-    }
-    if (total == 0) return {};
-    for (std::size_t plane = 0; plane < 6; ++plane) {
-        if (outside[plane] == total) return {};
-    }
+    if (counts.points == 0 || counts.allOutsideOnePlane()) return {};
     if (unbounded || !std::isfinite(minX) || !std::isfinite(maxX) || !std::isfinite(minY) || !std::isfinite(maxY)) {
         return frame;
     }

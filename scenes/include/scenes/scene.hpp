@@ -140,4 +140,27 @@ void validateScene(const Scene& scene);
 glm::mat4 viewMatrix(const Camera& camera);
 glm::mat4 projectionMatrix(const Camera& camera, float aspect);
 
+// Counts points (clip coordinates) outside each of the six clip planes. When all the points
+// of a shape are outside one plane, so is the shape's convex hull: each plane is a linear
+// inequality in clip coordinates, whatever the sign of w.
+struct ClipPlaneCounts {
+    std::size_t points = 0;
+    std::size_t outside[6] = {};
+    void add(const glm::vec4& clip) {
+        ++points;
+        outside[0] += clip.x < -clip.w;
+        outside[1] += clip.x > clip.w;
+        outside[2] += clip.y < -clip.w;
+        outside[3] += clip.y > clip.w;
+        outside[4] += clip.z < -clip.w;
+        outside[5] += clip.z > clip.w;
+    }
+    bool allOutsideOnePlane() const {
+        for (std::size_t plane : outside) {
+            if (points > 0 && plane == points) return true;
+        }
+        return false;
+    }
+};
+
 }  // namespace lodopt::scenes
