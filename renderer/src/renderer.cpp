@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -92,11 +93,10 @@ struct GpuMesh {
 PixelRect projectedRect(const scenes::Object& object, int level, const glm::mat4& viewProjection, int width,
                         int height) {
     const glm::mat4 transform = viewProjection * object.transform;
-    const PixelRect frame{0, 0, width, height};
-    std::size_t vertices = 0;  // those in front of the eye plane
     scenes::ClipPlaneCounts counts;
     bool unbounded = false;
-    float minX = 0, maxX = 0, minY = 0, maxY = 0;
+    const float infinity = std::numeric_limits<float>::infinity();
+    float minX = infinity, maxX = -infinity, minY = infinity, maxY = -infinity;
     for (const scenes::Mesh& mesh : object.levels[std::size_t(level)].meshes) {
         if (mesh.indices.empty()) continue;  // not uploaded, never drawn
         for (const glm::vec3& position : mesh.positions) {
@@ -107,16 +107,16 @@ PixelRect projectedRect(const scenes::Object& object, int level, const glm::mat4
                 continue;
             }
             const float x = clip.x / clip.w, y = clip.y / clip.w;
-            if (vertices == 0 || x < minX) minX = x;
-            if (vertices == 0 || x > maxX) maxX = x;
-            if (vertices == 0 || y < minY) minY = y;
-            if (vertices == 0 || y > maxY) maxY = y;
-            ++vertices;
+            minX = std::min(minX, x);
+            maxX = std::max(maxX, x);
+            minY = std::min(minY, y);
+            maxY = std::max(maxY, y);
         }
     }
     if (counts.points == 0 || counts.allOutsideOnePlane()) return {};
+    // Also a NaN or infinite projection (none lies in front of the eye then): the whole frame.
     if (unbounded || !std::isfinite(minX) || !std::isfinite(maxX) || !std::isfinite(minY) || !std::isfinite(maxY)) {
-        return frame;
+        return {0, 0, width, height};
     }
     // Window coordinates as the viewport transform computes them, clamped before converting.
     auto toPixels = [](float ndc, int size) {
@@ -328,28 +328,11 @@ struct Renderer::Impl {
         }
     }
 
-    // Reads color and depth back, rows flipped to top-to-bottom.
+    // Reads the whole frame back, rows top to bottom.
     void readBack(Frame& out) {
-        const int w = settings.width, h = settings.height;
-        out.width = w;
-        out.height = h;
-        out.rgba.resize(std::size_t(w) * h * 4);
-        out.depth.resize(std::size_t(w) * h);
-        readbackColor.resize(out.rgba.size());
-        glPixelStorei(GL_PACK_ALIGNMENT, 1);
-        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readbackColor.data());
-        std::vector<float>& depth = out.depth;
-        glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-        checkGl("glReadPixels");
-        const std::size_t colorRow = std::size_t(w) * 4;
-        for (int y = 0; y < h; ++y) {
-            std::memcpy(&out.rgba[std::size_t(y) * colorRow], &readbackColor[std::size_t(h - 1 - y) * colorRow],
-                        colorRow);
-        }
-        for (int y = 0; y < h / 2; ++y) {
-            std::swap_ranges(depth.begin() + std::ptrdiff_t(y) * w, depth.begin() + std::ptrdiff_t(y + 1) * w,
-                             depth.begin() + std::ptrdiff_t(h - 1 - y) * w);
-        }
+        out.width = settings.width;
+        out.height = settings.height;
+        readBackRect({0, 0, settings.width, settings.height}, out.rgba, out.depth);
     }
 };
 
