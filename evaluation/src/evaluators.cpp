@@ -5,6 +5,7 @@
 
 #include "evaluation/evaluation.hpp"
 #include "dirty_regions.hpp"
+#include "visibility.hpp"
 #include "window_groups.hpp"
 #include "metrics/incremental_evaluator.hpp"
 
@@ -192,11 +193,13 @@ private:
 
 namespace {
 
-// Per pixel, the one variable whose option layers cover it, kSharedPixel where several do and
-// kConstantPixel where none does (skipped objects never change).
+// Per pixel, the one variable whose option layers can show there, kSharedPixel where several
+// can and kConstantPixel where none can (skipped objects never change; detail::VisibilityBounds
+// says which covering layers are always hidden).
 std::vector<std::int32_t> pixelParts(const ViewSetup& setup) {
     const int width = setup.width(), height = setup.height();
     std::vector<std::int32_t> parts(std::size_t(width) * height, metrics::kConstantPixel);
+    const detail::VisibilityBounds visibility(setup);
     const std::vector<int>& objects = setup.variableObjects();
     for (std::size_t v = 0; v < objects.size(); ++v) {
         for (int level : setup.objects()[objects[v]].optionLevels) {
@@ -206,7 +209,7 @@ std::vector<std::int32_t> pixelParts(const ViewSetup& setup) {
                 const float* depth = layer.depth.data() + std::size_t(y - r.y0) * r.width();
                 std::int32_t* row = parts.data() + std::size_t(y) * width;
                 for (int x = std::max(r.x0, 0); x < std::min(r.x1, width); ++x) {
-                    if (!(depth[x - r.x0] < 1.0f)) continue;
+                    if (!visibility.canShow(std::size_t(y) * width + x, objects[v], depth[x - r.x0])) continue;
                     std::int32_t& owner = row[x];
                     if (owner == metrics::kConstantPixel) {
                         owner = std::int32_t(v);

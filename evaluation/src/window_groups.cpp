@@ -1,9 +1,13 @@
 // Window groups: the analysis (which objects each window depends on) and the grouped state.
 #include "window_groups.hpp"
 
+#include "visibility.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <map>
+#include <memory>
+#include <unordered_map>
 
 namespace lodopt::evaluation::detail {
 
@@ -88,8 +92,9 @@ WindowGroups::WindowGroups(const ViewSetup& setup, const metrics::RegionScorer& 
     const std::vector<int>& objects = setup.variableObjects();
     const std::vector<int> counts = setup.levelCounts();
     SetTable table;
-    // Per pixel, the variables whose option layers cover it.
+    // Per pixel, the variables whose option layers can show there (VisibilityBounds).
     std::vector<int> pixelSets(std::size_t(width) * height, 0);
+    const VisibilityBounds visibility(setup);
     for (std::size_t v = 0; v < objects.size(); ++v) {
         const int single = table.single(int(v));
         for (int level : setup.objects()[objects[v]].optionLevels) {
@@ -99,7 +104,9 @@ WindowGroups::WindowGroups(const ViewSetup& setup, const metrics::RegionScorer& 
                 const float* depth = layer.depth.data() + std::size_t(y - r.y0) * r.width();
                 int* row = pixelSets.data() + std::size_t(y) * width;
                 for (int x = std::max(r.x0, 0); x < std::min(r.x1, width); ++x) {
-                    if (depth[x - r.x0] < 1.0f) row[x] = table.unite(row[x], single);
+                    if (visibility.canShow(std::size_t(y) * width + x, objects[v], depth[x - r.x0])) {
+                        row[x] = table.unite(row[x], single);
+                    }
                 }
             }
         }
@@ -167,34 +174,85 @@ WindowGroups::WindowGroups(const ViewSetup& setup, const metrics::RegionScorer& 
     }
 }
 
-std::shared_ptr<const metrics::WindowSetScore> WindowGroups::find(std::size_t g, std::uint64_t key) {
+std::size_t PackedScore::bytesFor(const metrics::WindowSetScore& score) {
+    const std::size_t bytes = sizeof(PackedScore) + (score.gray.size() + score.sobel.size()) * sizeof(metrics::BinCount);
+    return (bytes + alignof(PackedScore) - 1) / alignof(PackedScore) * alignof(PackedScore);
+}
+
+const PackedScore* PackedScore::pack(const metrics::WindowSetScore& score, void* where) {
+    auto* packed = new (where) PackedScore;
+    packed->ssim = score.ssim;
+    packed->grayCount = std::uint32_t(score.gray.size());
+    packed->sobelCount = std::uint32_t(score.sobel.size());
+    auto* bins = reinterpret_cast<metrics::BinCount*>(packed + 1);
+    std::uninitialized_copy(score.gray.begin(), score.gray.end(), bins);
+    std::uninitialized_copy(score.sobel.begin(), score.sobel.end(), bins + score.gray.size());
+    return packed;
+}
+
+void* ScoreArena::allocate(std::size_t bytes) {
+    constexpr std::size_t unit = sizeof(std::max_align_t);
+    static_assert(alignof(std::max_align_t) >= alignof(PackedScore));
+    const std::size_t units = (bytes + unit - 1) / unit;
+    std::lock_guard lock(mMutex);
+    if (mChunks.empty() || mUsed + units > mCapacity) {
+        mCapacity = std::max(kChunkBytes / unit, units);
+        mChunks.push_back(std::make_unique_for_overwrite<std::max_align_t[]>(mCapacity));
+        mUsed = 0;
+    }
+    void* at = mChunks.back().get() + mUsed;
+    mUsed += units;
+    return at;
+}
+
+WindowGroup::Slot& WindowGroup::slotFor(std::uint64_t key) {
+    const std::size_t mask = slots.size() - 1;
+    std::uint64_t hash = key * 0x9E3779B97F4A7C15ull;
+    for (std::size_t i = std::size_t(hash ^ (hash >> 29)) & mask;; i = (i + 1) & mask) {
+        if (!slots[i].score || slots[i].key == key) return slots[i];
+    }
+}
+
+const PackedScore* WindowGroups::find(std::size_t g, std::uint64_t key) {
     WindowGroup& group = *mGroups[g];
     if (group.cacheable) {
         std::lock_guard lock(group.mutex);
-        const auto found = group.entries.find(key);
-        if (found != group.entries.end()) {
-            mHits.fetch_add(1, std::memory_order_relaxed);
-            return found->second;
+        if (!group.slots.empty()) {
+            if (const PackedScore* score = group.slotFor(key).score) {
+                mHits.fetch_add(1, std::memory_order_relaxed);
+                return score;
+            }
         }
     }
     mMisses.fetch_add(1, std::memory_order_relaxed);
     return nullptr;
 }
 
-std::shared_ptr<const metrics::WindowSetScore> WindowGroups::keep(
-    std::size_t g, std::uint64_t key, std::shared_ptr<const metrics::WindowSetScore> score) {
+const PackedScore* WindowGroups::keep(std::size_t g, std::uint64_t key, const metrics::WindowSetScore& score) {
     WindowGroup& group = *mGroups[g];
-    if (!group.cacheable) return score;
-    // An entry: the score, its node in the map and the shared pointer's control block.
-    const std::uint64_t bytes = score->bytes() + 64;
-    if (mBytes.load(std::memory_order_relaxed) + bytes > mByteBudget) return score;
+    if (!group.cacheable) return nullptr;
+    // An entry: the packed score and, at most half full, two slots.
+    const std::size_t packedBytes = PackedScore::bytesFor(score);
+    const std::uint64_t bytes = packedBytes + 2 * sizeof(WindowGroup::Slot);
+    if (mBytes.load(std::memory_order_relaxed) + bytes > mByteBudget) return nullptr;
     std::lock_guard lock(group.mutex);
-    const auto [at, added] = group.entries.emplace(key, score);
-    if (added) {
-        mBytes.fetch_add(bytes, std::memory_order_relaxed);
-        mEntries.fetch_add(1, std::memory_order_relaxed);
+    if (!group.slots.empty()) {
+        if (const PackedScore* kept = group.slotFor(key).score) return kept;
     }
-    return at->second;
+    if (2 * (group.filled + 1) > group.slots.size()) {
+        std::vector<WindowGroup::Slot> old(std::max<std::size_t>(8, 2 * group.slots.size()));
+        old.swap(group.slots);
+        for (const WindowGroup::Slot& slot : old) {
+            if (slot.score) group.slotFor(slot.key) = slot;
+        }
+    }
+    WindowGroup::Slot& slot = group.slotFor(key);
+    slot.key = key;
+    slot.score = PackedScore::pack(score, mArena.allocate(packedBytes));
+    ++group.filled;
+    mBytes.fetch_add(bytes, std::memory_order_relaxed);
+    mEntries.fetch_add(1, std::memory_order_relaxed);
+    return slot.score;
 }
 
 GroupCacheStats WindowGroups::stats() const {
@@ -227,6 +285,7 @@ GroupState::GroupState(const ViewSetup& setup, const metrics::RegionScorer& scor
     mTileEpoch.assign(std::size_t(mTilesX) * mTilesY, 0);
     mGroupEpoch.assign(groups.size(), 0);
     mApplied.resize(groups.size());
+    mUnkept.resize(groups.size());
     for (std::size_t g = 0; g < groups.size(); ++g) mAffected.push_back(g);
     rescore(mAffected);
 }
@@ -255,10 +314,20 @@ void GroupState::composite(const renderer::PixelRect& rect) {
     }
 }
 
-void GroupState::apply(std::size_t g, std::shared_ptr<const metrics::WindowSetScore> score) {
-    if (mApplied[g]) mTotals.add(*mApplied[g], -1);
-    mTotals.add(*score, 1);
-    mApplied[g] = std::move(score);
+void GroupState::apply(std::size_t g, const PackedScore* score) {
+    if (const PackedScore* old = mApplied[g]) mTotals.add(old->ssim, old->gray(), old->sobel(), -1);
+    mTotals.add(score->ssim, score->gray(), score->sobel(), 1);
+    mApplied[g] = score;
+}
+
+void GroupState::applyUnkept(std::size_t g, const metrics::WindowSetScore& score) {
+    // The old score may live in the buffer the new one goes to: take it off first.
+    if (const PackedScore* old = mApplied[g]) mTotals.add(old->ssim, old->gray(), old->sobel(), -1);
+    mApplied[g] = nullptr;
+    std::vector<std::max_align_t>& buffer = mUnkept[g];
+    const std::size_t units = (PackedScore::bytesFor(score) + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t);
+    if (buffer.size() < units) buffer.resize(units);
+    apply(g, PackedScore::pack(score, buffer.data()));
 }
 
 void GroupState::rescore(std::span<const std::size_t> groups) {
@@ -267,27 +336,30 @@ void GroupState::rescore(std::span<const std::size_t> groups) {
     mMisses.clear();
     for (std::size_t g : groups) {
         const std::uint64_t key = mGroups.group(g).key(mCurrent);
-        std::shared_ptr<const metrics::WindowSetScore> score = mGroups.find(g, key);
-        if (score) {
-            apply(g, std::move(score));
+        if (const PackedScore* score = mGroups.find(g, key)) {
+            apply(g, score);
         } else {
             mMisses.push_back({g, key});
         }
     }
     if (mMisses.empty()) return;
     mMissSets.clear();
-    mMissScores.clear();
     mMissOuts.clear();
-    for (const Miss& miss : mMisses) {
-        const WindowGroup& group = mGroups.group(miss.group);
+    if (mMissScores.size() < mMisses.size()) mMissScores.resize(mMisses.size());
+    for (std::size_t i = 0; i < mMisses.size(); ++i) {
+        const WindowGroup& group = mGroups.group(mMisses[i].group);
         composite(group.inputs);
         mMissSets.push_back(&group.windows);
-        mMissScores.push_back(std::make_shared<metrics::WindowSetScore>());
-        mMissOuts.push_back(mMissScores.back().get());
+        mMissOuts.push_back(&mMissScores[i]);
     }
     mScorer.scoreMany(*mWork, mMissSets, mMissOuts);
     for (std::size_t i = 0; i < mMisses.size(); ++i) {
-        apply(mMisses[i].group, mGroups.keep(mMisses[i].group, mMisses[i].key, std::move(mMissScores[i])));
+        const std::size_t g = mMisses[i].group;
+        if (const PackedScore* kept = mGroups.keep(g, mMisses[i].key, mMissScores[i])) {
+            apply(g, kept);
+        } else {
+            applyUnkept(g, mMissScores[i]);
+        }
     }
 }
 

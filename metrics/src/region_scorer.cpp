@@ -21,10 +21,11 @@ constexpr int kBandRows = 16;
 constexpr int kJoinColumns = 16;
 }  // namespace
 
-void WindowTotals::add(const WindowSetScore& score, int sign) {
-    ssim += sign > 0 ? score.ssim : -score.ssim;
-    for (const auto& [bin, count] : score.gray) gray[bin] += sign * std::int64_t(count);
-    for (const auto& [bin, count] : score.sobel) sobel[bin] += sign * std::int64_t(count);
+void WindowTotals::add(SsimFixedSum setSsim, std::span<const BinCount> setGray, std::span<const BinCount> setSobel,
+                       int sign) {
+    ssim += sign > 0 ? setSsim : -setSsim;
+    for (const auto& [bin, count] : setGray) gray[bin] += sign * std::int64_t(count);
+    for (const auto& [bin, count] : setSobel) sobel[bin] += sign * std::int64_t(count);
 }
 
 struct RegionScorer::State {

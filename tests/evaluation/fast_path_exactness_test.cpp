@@ -163,6 +163,10 @@ TEST(FastPathExactness, WindowGroupsMatchFromScratchScoresToTheBit) {
                                   LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups, 0);
             LayerEvaluator threaded(setup, parameters, 3, evaluation::DirtyRegions::ChangedPixels,
                                     LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups);
+            // Memory for a few scores only: kept and unkept scores follow each other in a group.
+            const std::size_t tightBytes = 16 * 1024;
+            LayerEvaluator tight(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
+                                 LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups, tightBytes);
             evaluation::FullRenderEvaluator full(setup, renderer, parameters);
             const std::vector<optimizer::Combination> walk = randomWalk(counts, 80, 13);
             std::vector<optimizer::Score> batch(walk.size());
@@ -172,6 +176,7 @@ TEST(FastPathExactness, WindowGroupsMatchFromScratchScoresToTheBit) {
                 const optimizer::Score score = grouped.evaluate(walk[k]);
                 expectSameScore(score, owned.evaluate(walk[k]), what + " vs owned windows");
                 expectSameScore(score, unkept.evaluate(walk[k]), what + " vs nothing kept");
+                expectSameScore(score, tight.evaluate(walk[k]), what + " vs little kept");
                 expectSameScore(score, batch[k], what + " vs threaded batch");
                 expectSameScore(score, automatic.evaluate(walk[k]), what + " vs automatic choice");
                 if (k % 8 == 0) {
@@ -189,6 +194,9 @@ TEST(FastPathExactness, WindowGroupsMatchFromScratchScoresToTheBit) {
             EXPECT_GT(stats.hits, 0u) << camera.name;
             EXPECT_GT(stats.entries, std::uint64_t(stats.groups)) << camera.name;
             EXPECT_EQ(unkept.groupCacheStats().entries, 0u) << camera.name;
+            EXPECT_GT(tight.groupCacheStats().entries, 0u) << camera.name;
+            EXPECT_LT(tight.groupCacheStats().entries, stats.entries) << camera.name;
+            EXPECT_LE(tight.groupCacheStats().bytes, tightBytes) << camera.name;
             EXPECT_EQ(owned.groupCacheStats().groups, 0) << camera.name;
             // Auto: groups up to kMaxGroupsPerObject per searched object, owned windows beyond.
             const bool fewGroups = stats.groups <= LayerEvaluator::kMaxGroupsPerObject * int(counts.size());

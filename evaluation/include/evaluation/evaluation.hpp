@@ -137,17 +137,20 @@ enum class DirtyRegions {
 //   searched object, else On. Many groups per object (many small objects whose seams meet in
 //   many combinations) mean few kept scores are found again early in a search, and a new
 //   group score is computed over the whole group, where On computes only around the changed
-//   pixels (forest `edge`, `overview`: slower with groups, docs/optimizer.md).
-// - Groups: every metric window depends on the levels of the searched objects
-//   whose layers reach its pixels; windows with the same objects form a group, and a group's
+//   pixels (forest `overview`, city `avenue`, `aerial`, `skyline`: slower with groups early
+//   in a search, docs/optimizer.md).
+// - Groups: every metric window depends on the levels of the searched objects whose layers
+//   can show at its pixels (cover them, and are not behind an object that covers them at
+//   every level it can take: detail::VisibilityBounds); windows with the same objects form a
+//   group, and a group's
 //   score (its SSIM windows' exact sum and its histogram counts) is kept per combination of
 //   those objects' levels, shared by all states. A candidate re-scores only the groups of the
 //   objects that moved: a kept score is a lookup, a new one composites and scores just the
 //   pixels that group reads. Needs a fitness made of window sums (metrics::RegionScorer::
 //   supports: histogram entropies, no precision/recall); otherwise the evaluator uses On.
-// - On: owned windows. A pixel that only one object's levels ever cover depends on that
+// - On: owned windows. A pixel where only one object's levels can ever show depends on that
 //   object's level alone, and so does every metric window made only of such pixels (and of
-//   pixels no searched object covers). Those windows are scored once per (object, level) and
+//   pixels where no searched object can show). Those windows are scored once per (object, level) and
 //   copied in when the object moves to that level; windows where two searched objects' levels
 //   meet are computed per candidate, on the recomposited frame.
 // - Off: every changed pixel's windows are computed per candidate.
@@ -175,8 +178,8 @@ public:
     // Memory the window groups keep scores in, at most: beyond it new scores are still
     // computed and used, but not kept.
     static constexpr std::size_t kGroupCacheBytes = std::size_t(256) << 20;
-    // PartCaching::Auto's limit (measured on the forest's views, docs/optimizer.md).
-    static constexpr int kMaxGroupsPerObject = 10;
+    // PartCaching::Auto's limit (measured on the forest's and city's views, docs/optimizer.md).
+    static constexpr int kMaxGroupsPerObject = 11;
     LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads = 1,
                    DirtyRegions regions = DirtyRegions::ChangedPixels, int states = kDefaultStates,
                    PartCaching caching = PartCaching::Auto, std::size_t groupCacheBytes = kGroupCacheBytes);

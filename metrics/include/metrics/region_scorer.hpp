@@ -40,10 +40,13 @@ struct WindowSet {
     std::vector<WindowRun> ssim, gray, sobel;
 };
 
+// A nonzero histogram count: (bin, count).
+using BinCount = std::pair<std::uint16_t, std::uint32_t>;
+
 // A set's score: the SSIM windows' fixed-point sum and the nonzero histogram counts.
 struct WindowSetScore {
     SsimFixedSum ssim = 0;
-    std::vector<std::pair<std::uint16_t, std::uint32_t>> gray, sobel;  // (bin, count)
+    std::vector<BinCount> gray, sobel;
     std::size_t bytes() const { return sizeof(*this) + (gray.capacity() + sobel.capacity()) * sizeof(gray[0]); }
 };
 
@@ -52,7 +55,9 @@ struct WindowTotals {
     SsimFixedSum ssim = 0;
     std::vector<std::int64_t> gray, sobel;
     // Adds (sign +1) or removes (sign -1) a score.
-    void add(const WindowSetScore& score, int sign);
+    void add(const WindowSetScore& score, int sign) { add(score.ssim, score.gray, score.sobel, sign); }
+    // The same from a score kept elsewhere (a caller's packed copy).
+    void add(SsimFixedSum setSsim, std::span<const BinCount> setGray, std::span<const BinCount> setSobel, int sign);
 };
 
 class RegionScorer {
