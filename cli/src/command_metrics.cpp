@@ -189,7 +189,7 @@ void addMetricsCommand(CLI::App& app) {
     CLI::App* command =
         app.add_subcommand("metrics", "Score image A (candidate) against image B (reference): SSIM, entropies, "
                                       "precision/recall, fused fitness");
-    command->add_option("candidate", options->candidate, "Candidate image A (PNG, or any OpenImageIO format)")
+    command->add_option("candidate", options->candidate, "Candidate image A (PNG, JPEG or binary PNM)")
         ->required();
     command->add_option("reference", options->reference, "Reference image B")->required();
     command->add_option("--weights", options->weights,

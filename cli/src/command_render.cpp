@@ -1,4 +1,5 @@
-// lodopt render: one combination from one view, to PNG (and optionally depth EXR), timed.
+// lodopt render: one combination from one view, to PNG, JPEG or PPM (and optionally depth EXR
+// or PFM), timed.
 #include <iostream>
 
 #include "cli_common.hpp"
@@ -27,13 +28,20 @@ void addRenderCommand(CLI::App& app) {
     command->add_option("--levels", options->levels,
                         "One level per object, comma-separated (-1 = not drawn); default all 0 (the reference)");
     command->add_option("--size", options->size, "WIDTHxHEIGHT")->capture_default_str();
-    command->add_option("--out", options->out, "Color image (PNG by extension)")->capture_default_str();
-    command->add_option("--depth-out", options->depthOut, "Also write depth as a float EXR");
+    command->add_option("--out", options->out, "Color image: .png, .jpg or .ppm")->capture_default_str();
+    command->add_option("--depth-out", options->depthOut, "Also write depth as floats: .exr or .pfm");
     command->add_option("--seed", options->seed, "Seed of a built-in scene");
     command->add_flag("--time", options->time, "Also measure the render time (median of --repeats)");
     command->add_option("--repeats", options->repeats, "Timed repeats for --time")->check(CLI::Range(1, 1000));
     addOutputOptions(*command, options->output);
     command->callback([options] {
+        // Output types first: nothing is rendered or written for an unsupported one.
+        if (std::string error = renderer::colorImageTypeError(options->out); !error.empty()) throw UsageError(error);
+        if (!options->depthOut.empty()) {
+            if (std::string error = renderer::depthImageTypeError(options->depthOut); !error.empty()) {
+                throw UsageError(error);
+            }
+        }
         renderer::RenderSettings settings;
         parseSize(options->size, settings.width, settings.height);
         scenes::Scene scene = scenes::loadScene(options->scene, options->seed);

@@ -15,7 +15,7 @@ void writeFileAtomically(const std::string& path, const std::function<void(const
     static std::atomic<unsigned> counter{0};
     fs::path target(path);
     if (target.has_parent_path()) fs::create_directories(target.parent_path());
-    // Keep the extension last: some writers (OpenImageIO) choose the format from it.
+    // Keep the extension last: writers may choose the format from it (OpenEXR reads it).
     fs::path temporary = target.parent_path() /
                          (target.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
                           std::to_string(counter++) + target.extension().string());

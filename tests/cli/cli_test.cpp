@@ -126,6 +126,11 @@ TEST(CliRender, BadArgumentsExitWithTwoAndWriteNothing) {
     EXPECT_EQ(runLodopt("render --levels a,b,c --out " + out).exitCode, 2);
     EXPECT_EQ(runLodopt("render --view nowhere --out " + out).exitCode, 2);
     EXPECT_EQ(runLodopt("render --size 0x10 --out " + out).exitCode, 2);
+    // Output types lodopt cannot write: refused before anything is rendered or written.
+    const std::string tif = (dir / "x.tif").string();
+    EXPECT_EQ(runLodopt("render --size 32x32 --out " + tif).exitCode, 2);
+    EXPECT_EQ(runLodopt("render --size 32x32 --out " + out + " --depth-out " + (dir / "d.png").string()).exitCode, 2);
+    EXPECT_FALSE(std::filesystem::exists(tif));
     EXPECT_EQ(runLodopt("render --no-such-flag").exitCode, 2);
     EXPECT_EQ(runLodopt("").exitCode, 2);
     EXPECT_FALSE(std::filesystem::exists(out));

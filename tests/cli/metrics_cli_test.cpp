@@ -1,4 +1,4 @@
-// lodopt metrics: exit codes and JSON output on tiny hand-written PPM/PGM images (OpenImageIO
+// lodopt metrics: exit codes and JSON output on tiny hand-written PPM/PGM images (lodopt
 // reads binary PNM, so the test needs no image library).
 #include <gtest/gtest.h>
 

@@ -394,7 +394,8 @@ TEST(AtomicOutput, EveryWriterInTheSourcesWritesATemporaryFile) {
             for (std::string line; std::getline(in, line);) {
                 ++number;
                 const bool opens = line.find("std::ofstream") != std::string::npos ||
-                                   line.find("ImageOutput::create") != std::string::npos ||
+                                   line.find("\"wb\"") != std::string::npos ||
+                                   line.find("OutputFile ") != std::string::npos ||
                                    line.find("imwrite(") != std::string::npos;
                 const std::size_t first = line.find_first_not_of(' ');
                 if (!opens || line.compare(first, 2, "//") == 0) continue;

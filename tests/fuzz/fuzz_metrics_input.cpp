@@ -1,4 +1,4 @@
-// libFuzzer target: the `lodopt metrics A B` input path (OpenImageIO read, channel and size
+// libFuzzer target: the `lodopt metrics A B` input path (image read, channel and size
 // matching, every metric). Input layout in fuzz_metrics_input.hpp; seed corpus in
 // tests/fuzz/corpus/metrics_input/. Run by scripts/fuzz.sh.
 #include "fuzz_metrics_input.hpp"

@@ -1,11 +1,11 @@
-// The `lodopt metrics A B` input path for fuzzing: image files through OpenImageIO, channel and
+// The `lodopt metrics A B` input path for fuzzing: image files (PNG, JPEG, PNM), channel and
 // size matching, then every metric. Shared by tests/fuzz/fuzz_metrics_input.cpp (libFuzzer)
 // and the corpus replay in tests/cli/robustness_test.cpp.
 //
 // Input layout (so that the fuzzer can build two images of the same size):
 //   byte 0        option bits: 1 --gray bt601, 2 --boundary-entropy paper,
 //                 4 --information-entropy paper, 8 --weights 1,0,1; bits 4-5 pick the file
-//                 extension (.png, .jpg, .tga, .ppm) OpenImageIO sees
+//                 extension (.png, .jpg, .tga, .ppm); the reader goes by the bytes
 //   bytes 1-4     n, little-endian: the size of image A (clamped to what is left)
 //   n bytes       image A (the candidate)
 //   the rest      image B (the reference); when empty, A is compared with itself

@@ -255,7 +255,7 @@ TEST(Renderer, RejectsBadSizesAndCombinations) {
     EXPECT_THROW(renderer.renderLayer(5, 0, scene.views[0]), renderer::RenderError);
 }
 
-TEST(ImageFiles, PngRoundTripAndAtomicWrite) {
+TEST(ImageFiles, RenderedFrameRoundTripsThroughPngAndAtomicWrite) {
     scenes::Scene scene = scenes::makeHarborScene();
     renderer::Renderer renderer(scene, smallSettings());
     renderer::Frame frame = renderer.render(scenes::referenceCombination(scene), scene.views[0]);

@@ -160,10 +160,18 @@ void compositeRectChanges(const std::vector<const Layer*>& layers, PixelRect rec
 // The clear color as the renderer writes it (RGBA8).
 void clearColorBytes(glm::vec4 clearColor, std::uint8_t out[4]);
 
-// Image files through OpenImageIO; format by extension (PNG default). Written atomically.
+// Image files, written atomically (docs/renderer.md "Image files"). Color: the type from the
+// extension, .png (RGBA; also without extension), .jpg/.jpeg (RGB, quality 95) or .ppm (RGB).
+// Depth: .exr (one float channel "Z") or .pfm. Another extension throws RenderError before
+// anything is written; the ...TypeError functions say so without writing (empty: supported),
+// for a command to refuse its arguments before it starts.
 void writeColorImage(const std::string& path, const Frame& frame);
-void writeDepthImage(const std::string& path, const Frame& frame);  // EXR, one float channel
-// Reads an 8-bit image; `channels` is 1 (gray), 3 or 4 as stored. Throws RenderError.
+void writeDepthImage(const std::string& path, const Frame& frame);
+std::string colorImageTypeError(const std::string& path);
+std::string depthImageTypeError(const std::string& path);
+// Reads an 8-bit image: PNG (any bit depth, palette, interlace), JPEG (gray or RGB) or binary
+// PNM (P5, P6), told apart by their first bytes; 16-bit samples are scaled to 8 bits.
+// `channels` is 1 (gray; gray + alpha drops the alpha), 3 or 4 as stored. Throws RenderError.
 struct LoadedImage {
     int width = 0, height = 0, channels = 0;
     std::vector<std::uint8_t> pixels;
