@@ -231,16 +231,18 @@ const PackedScore* WindowGroups::find(std::size_t g, std::uint64_t key) {
 const PackedScore* WindowGroups::keep(std::size_t g, std::uint64_t key, const metrics::WindowSetScore& score) {
     WindowGroup& group = *mGroups[g];
     if (!group.cacheable) return nullptr;
-    // An entry: the packed score and, at most half full, two slots.
     const std::size_t packedBytes = PackedScore::bytesFor(score);
-    const std::uint64_t bytes = packedBytes + 2 * sizeof(WindowGroup::Slot);
-    if (mBytes.load(std::memory_order_relaxed) + bytes > mByteBudget) return nullptr;
     std::lock_guard lock(group.mutex);
     if (!group.slots.empty()) {
         if (const PackedScore* kept = group.slotFor(key).score) return kept;
     }
-    if (2 * (group.filled + 1) > group.slots.size()) {
-        std::vector<WindowGroup::Slot> old(std::max<std::size_t>(8, 2 * group.slots.size()));
+    // The memory counted: the packed score, and the table's growth when it would pass half full.
+    const bool grow = 2 * (group.filled + 1) > group.slots.size();
+    const std::size_t slotCount = grow ? std::max<std::size_t>(8, 2 * group.slots.size()) : group.slots.size();
+    const std::uint64_t bytes = packedBytes + (slotCount - group.slots.size()) * sizeof(WindowGroup::Slot);
+    if (mBytes.load(std::memory_order_relaxed) + bytes > mByteBudget) return nullptr;
+    if (grow) {
+        std::vector<WindowGroup::Slot> old(slotCount);
         old.swap(group.slots);
         for (const WindowGroup::Slot& slot : old) {
             if (slot.score) group.slotFor(slot.key) = slot;
