@@ -6,9 +6,9 @@
 // can take, at depth at most D (its farthest level there), hides there every fragment of
 // another object lying strictly behind D, in every combination. Such a fragment never wins the
 // depth test and never changes which fragment does, so the pixel does not depend on its
-// object's level. Buildings hide most of what stands behind them (city `street`: windows that
-// depend on two or more objects fall from 39 % to 17 %); foliage, whose levels differ in
-// silhouette, hides less (forest `edge`: 41 % to 32 %).
+// object's level. Buildings hide most of what stands behind them (city `street` at 512²: SSIM
+// windows that depend on two or more objects fall from 31 % to 17 % of all); foliage, whose
+// levels differ in silhouette, hides less (forest `edge`: 43 % to 35 %).
 #pragma once
 
 #include <cstddef>
