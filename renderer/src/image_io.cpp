@@ -359,9 +359,10 @@ void checkFrame(const std::string& path, const Frame& frame, bool depth) {
     }
 }
 
-// fclose reports what buffered writes could not do (a full disk).
+// Closes a written file: buffered writes fail here (a full disk), not in fwrite.
 void closeWritten(const std::string& path, File file) {
-    if (std::fflush(file.get()) != 0 || std::ferror(file.get())) throw RenderError(path + ": write failed");
+    const bool failed = std::ferror(file.get()) != 0;
+    if (std::fclose(file.release()) != 0 || failed) throw RenderError(path + ": write failed");
 }
 
 }  // namespace
