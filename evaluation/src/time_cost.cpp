@@ -1,6 +1,7 @@
 #include "evaluation/time_cost.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace lodopt::evaluation {
@@ -14,7 +15,8 @@ double clampMs(double ms) { return std::isfinite(ms) ? std::max(ms, 0.0) : 0.0; 
 
 TimeModelCost::TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator)
     : mTable(setup.scene(), setup.camera(), setup.width(), setup.height()),
-      mEstimator(std::move(estimator)) {
+      mEstimator(std::move(estimator)),
+      mId(nextId()) {
     const std::vector<int>& variables = setup.variableObjects();
     scenes::Combination fixedOnly = setup.toScene(optimizer::Combination(variables.size(), 0));
     for (int object : variables) fixedOnly[std::size_t(object)] = scenes::kNotDrawn;
@@ -42,12 +44,33 @@ double TimeModelCost::predictMs(const optimizer::Combination& combination) const
     return clampMs(mEstimator(featuresOf(combination)));
 }
 
+std::uint64_t TimeModelCost::nextId() {
+    static std::atomic<std::uint64_t> counter{0};
+    return ++counter;
+}
+
 double TimeModelCost::deltaMs(const optimizer::Combination& combination, int variable, int newLevel) const {
+    // The repair asks for every variable's step from one combination: its features are summed
+    // once per combination, not once per question (that was quadratic in the searched objects:
+    // most of a tune on the city's dense views). Per thread, since a cost may be shared; keyed
+    // by an id no other cost ever has, not by the address, which a later cost may reuse.
+    struct Memo {
+        std::uint64_t cost = 0;
+        optimizer::Combination combination;
+        timemodel::FrameFeatures features;
+        double ms = 0.0;
+    };
+    thread_local Memo memo;
+    if (memo.cost != mId || memo.combination != combination) {
+        memo.cost = mId;
+        memo.combination = combination;
+        memo.features = featuresOf(combination);
+        memo.ms = clampMs(mEstimator(memo.features));
+    }
     const std::vector<timemodel::FrameFeatures>& options = mOptions[std::size_t(variable)];
-    const timemodel::FrameFeatures before = featuresOf(combination);
     const timemodel::FrameFeatures after =
-        before + (options[std::size_t(newLevel)] - options[std::size_t(combination[std::size_t(variable)])]);
-    return clampMs(mEstimator(after)) - clampMs(mEstimator(before));
+        memo.features + (options[std::size_t(newLevel)] - options[std::size_t(combination[std::size_t(variable)])]);
+    return clampMs(mEstimator(after)) - memo.ms;
 }
 
 }  // namespace lodopt::evaluation

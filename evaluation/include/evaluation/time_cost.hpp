@@ -8,6 +8,7 @@
 // eighth of a forest search).
 #pragma once
 
+#include <cstdint>
 #include <functional>
 
 #include "evaluation/evaluation.hpp"
@@ -32,11 +33,13 @@ public:
 
 private:
     timemodel::FrameFeatures featuresOf(const optimizer::Combination& combination) const;
+    static std::uint64_t nextId();
 
     timemodel::FeatureTable mTable;
     FrameTimeEstimator mEstimator;
     timemodel::FrameFeatures mFixed;                             // frame constant + skipped objects
     std::vector<std::vector<timemodel::FrameFeatures>> mOptions;  // [variable][option] contribution
+    std::uint64_t mId;  // this cost's key in deltaMs's per-thread memo
 };
 
 }  // namespace lodopt::evaluation
