@@ -1,6 +1,7 @@
 // The fast (layers + incremental metrics) and full (render + metrics) evaluation paths.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <thread>
 
 #include "evaluation/evaluation.hpp"
@@ -196,10 +197,9 @@ namespace {
 // Per pixel, the one variable whose option layers can show there, kSharedPixel where several
 // can and kConstantPixel where none can (skipped objects never change; detail::VisibilityBounds
 // says which covering layers are always hidden).
-std::vector<std::int32_t> pixelParts(const ViewSetup& setup) {
+std::vector<std::int32_t> pixelParts(const ViewSetup& setup, const detail::VisibilityBounds& visibility) {
     const int width = setup.width(), height = setup.height();
     std::vector<std::int32_t> parts(std::size_t(width) * height, metrics::kConstantPixel);
-    const detail::VisibilityBounds visibility(setup);
     const std::vector<int>& objects = setup.variableObjects();
     for (std::size_t v = 0; v < objects.size(); ++v) {
         for (int level : setup.objects()[objects[v]].optionLevels) {
@@ -236,9 +236,12 @@ LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricPara
         caching = PartCaching::On;
     }
     if (automatic && caching == PartCaching::Auto) caching = PartCaching::Groups;
+    // Both caches' analyses start from where each object can show; Auto may need both.
+    std::optional<detail::VisibilityBounds> visibility;
     if (caching == PartCaching::Groups) {
+        visibility.emplace(setup);
         mScorer = std::make_unique<metrics::RegionScorer>(viewOf(setup.reference()), parameters);
-        mGroups = std::make_unique<detail::WindowGroups>(setup, *mScorer, groupCacheBytes);
+        mGroups = std::make_unique<detail::WindowGroups>(setup, *visibility, *mScorer, groupCacheBytes);
         const std::size_t objects = std::max<std::size_t>(setup.variableObjects().size(), 1);
         if (automatic && mGroups->size() > std::size_t(kMaxGroupsPerObject) * objects) {
             mGroups.reset();
@@ -254,7 +257,9 @@ LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricPara
     } else {
         if (caching == PartCaching::On && changedPixels && !setup.variableObjects().empty()) {
             const std::vector<int> counts = setup.levelCounts();
-            mPartCache = metrics::makePartCache(setup.width(), setup.height(), parameters, pixelParts(setup), counts);
+            if (!visibility) visibility.emplace(setup);
+            mPartCache = metrics::makePartCache(setup.width(), setup.height(), parameters,
+                                                pixelParts(setup, *visibility), counts);
         }
         for (int t = 0; t < count; ++t) {
             mStates.push_back(std::make_unique<State>(setup, parameters, regions, mPartCache));

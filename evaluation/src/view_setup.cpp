@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "evaluation/evaluation.hpp"
+#include "visibility.hpp"
 
 namespace lodopt::evaluation {
 
@@ -56,23 +57,15 @@ ViewSetup::ViewSetup(const scenes::Scene& scene, const scenes::Camera& camera, r
         }
     }
 
-    // Nearest and second-nearest level-0 depth per pixel, and the nearest object's index, so
-    // that "the other objects' depth" at a pixel is one lookup.
-    std::vector<float> nearest(pixels, 1.0f), second(pixels, 1.0f);
-    std::vector<int> owner(pixels, -1);
+    // Level-0 depths per pixel: "the other objects' depth" at a pixel is one lookup.
+    detail::NearestTwo levelZero(pixels);
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const renderer::Layer& layer = mLayers[o][0];
         for (int y = layer.rect.y0; y < layer.rect.y1; ++y) {
             for (int x = layer.rect.x0; x < layer.rect.x1; ++x) {
-                float depth = layer.depth[std::size_t(y - layer.rect.y0) * layer.rect.width() + (x - layer.rect.x0)];
-                std::size_t p = std::size_t(y) * width + x;
-                if (depth < nearest[p]) {
-                    second[p] = nearest[p];
-                    nearest[p] = depth;
-                    owner[p] = int(o);
-                } else if (depth < second[p]) {
-                    second[p] = depth;
-                }
+                const float depth =
+                    layer.depth[std::size_t(y - layer.rect.y0) * layer.rect.width() + (x - layer.rect.x0)];
+                levelZero.offer(std::size_t(y) * width + x, depth, int(o));
             }
         }
     }
@@ -99,9 +92,7 @@ ViewSetup::ViewSetup(const scenes::Scene& scene, const scenes::Camera& camera, r
                         float depth =
                             layer.depth[std::size_t(y - layer.rect.y0) * layer.rect.width() + (x - layer.rect.x0)];
                         if (depth >= 1.0f) continue;
-                        std::size_t p = std::size_t(y) * width + x;
-                        float others = owner[p] == int(o) ? second[p] : nearest[p];
-                        if (depth <= others) {
+                        if (depth <= levelZero.nearestOtherThan(std::size_t(y) * width + x, int(o))) {
                             visible = true;
                             break;
                         }

@@ -4,12 +4,9 @@
 
 namespace lodopt::evaluation::detail {
 
-VisibilityBounds::VisibilityBounds(const ViewSetup& setup) {
+VisibilityBounds::VisibilityBounds(const ViewSetup& setup)
+    : mBounds(std::size_t(setup.width()) * std::size_t(setup.height())) {
     const int width = setup.width(), height = setup.height();
-    const std::size_t pixels = std::size_t(width) * height;
-    mNearest.assign(pixels, 1.0f);
-    mSecond.assign(pixels, 1.0f);
-    mOccluder.assign(pixels, -1);
     std::vector<float> farthest;  // per pixel of the object's levels' union rectangle
     std::vector<int> covering;    // how many of its levels cover the pixel
     for (std::size_t o = 0; o < setup.objects().size(); ++o) {
@@ -48,16 +45,7 @@ VisibilityBounds::VisibilityBounds(const ViewSetup& setup) {
         for (int y = unionRect.y0; y < unionRect.y1; ++y) {
             for (int x = unionRect.x0; x < unionRect.x1; ++x) {
                 const std::size_t at = std::size_t(y - unionRect.y0) * unionWidth + std::size_t(x - unionRect.x0);
-                if (covering[at] != int(levels.size())) continue;
-                const float bound = farthest[at];
-                const std::size_t p = std::size_t(y) * width + x;
-                if (bound < mNearest[p]) {
-                    mSecond[p] = mNearest[p];
-                    mNearest[p] = bound;
-                    mOccluder[p] = int(o);
-                } else if (bound < mSecond[p]) {
-                    mSecond[p] = bound;
-                }
+                if (covering[at] == int(levels.size())) mBounds.offer(std::size_t(y) * width + x, farthest[at], int(o));
             }
         }
     }

@@ -18,6 +18,31 @@
 
 namespace lodopt::evaluation::detail {
 
+// Per pixel, the smallest and second smallest depth offered, and the object that offered the
+// smallest (each object offers at most once per pixel): "the nearest of the other objects" is
+// one lookup. ViewSetup's hidden-object test and VisibilityBounds both keep one.
+class NearestTwo {
+public:
+    explicit NearestTwo(std::size_t pixels) : mNearest(pixels, 1.0f), mSecond(pixels, 1.0f), mObject(pixels, -1) {}
+    void offer(std::size_t pixel, float depth, int object) {
+        if (depth < mNearest[pixel]) {
+            mSecond[pixel] = mNearest[pixel];
+            mNearest[pixel] = depth;
+            mObject[pixel] = object;
+        } else if (depth < mSecond[pixel]) {
+            mSecond[pixel] = depth;
+        }
+    }
+    // The smallest depth offered at `pixel` by an object other than `object` (1 when none).
+    float nearestOtherThan(std::size_t pixel, int object) const {
+        return mObject[pixel] == object ? mSecond[pixel] : mNearest[pixel];
+    }
+
+private:
+    std::vector<float> mNearest, mSecond;
+    std::vector<int> mObject;
+};
+
 class VisibilityBounds {
 public:
     // Every object of the scene takes part as an occluder: searched ones over their option
@@ -28,14 +53,12 @@ public:
     // nearest in some combination: it covers the pixel, and no other object is always in front
     // of it there. Equal depths count as possibly visible (ties go by object order).
     bool canShow(std::size_t pixel, int object, float depth) const {
-        return depth < 1.0f && depth <= (mOccluder[pixel] == object ? mSecond[pixel] : mNearest[pixel]);
+        return depth < 1.0f && depth <= mBounds.nearestOtherThan(pixel, object);
     }
 
 private:
-    // Per pixel, the nearest "always covers, at most this deep" bound, the object giving it,
-    // and the nearest bound of any other object.
-    std::vector<float> mNearest, mSecond;
-    std::vector<int> mOccluder;
+    // Per pixel, the "always covers, at most this deep" bounds the objects offer.
+    NearestTwo mBounds;
 };
 
 }  // namespace lodopt::evaluation::detail

@@ -1,8 +1,6 @@
 // Window groups: the analysis (which objects each window depends on) and the grouped state.
 #include "window_groups.hpp"
 
-#include "visibility.hpp"
-
 #include <algorithm>
 #include <bit>
 #include <map>
@@ -86,7 +84,8 @@ constexpr int kTile = 32;
 
 }  // namespace
 
-WindowGroups::WindowGroups(const ViewSetup& setup, const metrics::RegionScorer& scorer, std::size_t byteBudget)
+WindowGroups::WindowGroups(const ViewSetup& setup, const VisibilityBounds& visibility,
+                           const metrics::RegionScorer& scorer, std::size_t byteBudget)
     : mByteBudget(byteBudget) {
     const int width = setup.width(), height = setup.height();
     const std::vector<int>& objects = setup.variableObjects();
@@ -94,7 +93,6 @@ WindowGroups::WindowGroups(const ViewSetup& setup, const metrics::RegionScorer& 
     SetTable table;
     // Per pixel, the variables whose option layers can show there (VisibilityBounds).
     std::vector<int> pixelSets(std::size_t(width) * height, 0);
-    const VisibilityBounds visibility(setup);
     for (std::size_t v = 0; v < objects.size(); ++v) {
         const int single = table.single(int(v));
         for (int level : setup.objects()[objects[v]].optionLevels) {

@@ -28,6 +28,7 @@
 
 #include "evaluation/evaluation.hpp"
 #include "metrics/region_scorer.hpp"
+#include "visibility.hpp"
 
 namespace lodopt::evaluation::detail {
 
@@ -95,9 +96,11 @@ struct WindowGroup {
 
 class WindowGroups {
 public:
-    // Analyses the view: which searched objects each window of `scorer`'s metrics depends on.
-    // Scores are kept while their memory stays under `byteBudget`.
-    WindowGroups(const ViewSetup& setup, const metrics::RegionScorer& scorer, std::size_t byteBudget);
+    // Analyses the view: which searched objects each window of `scorer`'s metrics depends on
+    // (those that can show at its pixels, by `visibility`). Scores are kept while their memory
+    // stays under `byteBudget`.
+    WindowGroups(const ViewSetup& setup, const VisibilityBounds& visibility, const metrics::RegionScorer& scorer,
+                 std::size_t byteBudget);
 
     std::size_t size() const { return mGroups.size(); }
     WindowGroup& group(std::size_t g) { return *mGroups[g]; }

@@ -88,6 +88,18 @@ std::uint64_t windowsWithBoth(const std::vector<bool>& a, const std::vector<bool
     return count;
 }
 
+// The fast path with each caching: window groups, owned windows, and neither (the reference).
+struct Evaluators {
+    evaluation::LayerEvaluator grouped, owned, uncached;
+    Evaluators(const evaluation::ViewSetup& setup, const metrics::MetricParameters& parameters)
+        : grouped(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
+                  evaluation::LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups),
+          owned(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
+                evaluation::LayerEvaluator::kDefaultStates, evaluation::PartCaching::On),
+          uncached(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
+                   evaluation::LayerEvaluator::kDefaultStates, evaluation::PartCaching::Off) {}
+};
+
 }  // namespace
 
 TEST(Occlusion, WindowsBehindWhatAlwaysCoversThemDependOnTheFrontObjectAlone) {
@@ -119,13 +131,8 @@ TEST(Occlusion, WindowsBehindWhatAlwaysCoversThemDependOnTheFrontObjectAlone) {
     ASSERT_GT(expected, 0u);
     ASSERT_LT(2 * expected, coveredByBoth);  // the scene hides most of `back` behind `front`
 
-    using evaluation::LayerEvaluator;
-    LayerEvaluator grouped(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
-                           LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups);
-    LayerEvaluator owned(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
-                         LayerEvaluator::kDefaultStates, evaluation::PartCaching::On);
-    LayerEvaluator uncached(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
-                            LayerEvaluator::kDefaultStates, evaluation::PartCaching::Off);
+    Evaluators evaluators(setup, parameters);
+    auto& [grouped, owned, uncached] = evaluators;
     // Every combination, twice over in an order that changes one or both objects per step.
     for (const optimizer::Combination& combination :
          {optimizer::Combination{1, 0}, {1, 1}, {0, 1}, {0, 0}, {1, 1}, {0, 0}, {0, 1}, {1, 0}}) {
@@ -150,7 +157,6 @@ TEST(Occlusion, CityStreetScoresMatchFromScratchWithEveryCaching) {
     settings.width = settings.height = 96;
     renderer::Renderer renderer(scene, settings);
     const metrics::MetricParameters parameters = evaluation::searchParameters({});
-    using evaluation::LayerEvaluator;
     for (const char* viewName : {"street", "skyline"}) {
         const scenes::Camera* camera = nullptr;
         for (const scenes::Camera& view : scene.views) {
@@ -160,12 +166,8 @@ TEST(Occlusion, CityStreetScoresMatchFromScratchWithEveryCaching) {
         evaluation::ViewSetup setup(scene, *camera, renderer);
         const std::vector<int> counts = setup.levelCounts();
         ASSERT_GE(counts.size(), 10u) << viewName;
-        LayerEvaluator grouped(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
-                               LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups);
-        LayerEvaluator owned(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
-                             LayerEvaluator::kDefaultStates, evaluation::PartCaching::On);
-        LayerEvaluator uncached(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
-                                LayerEvaluator::kDefaultStates, evaluation::PartCaching::Off);
+        Evaluators evaluators(setup, parameters);
+        auto& [grouped, owned, uncached] = evaluators;
         std::mt19937 random(17);
         optimizer::Combination current(counts.size(), 0);
         for (int step = 0; step < 60; ++step) {
