@@ -11,26 +11,12 @@
 #include "evaluation/time_cost.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/mesh_builder.hpp"
+#include "box_objects.hpp"
 
 using namespace lodopt;
+using lodopt::test_scenes::boxObject;
 
 namespace {
-
-scenes::Level boxLevel(glm::vec3 halfExtents, int material) {
-    scenes::MeshBuilder builder(material);
-    builder.addBox(glm::vec3(0.0f), halfExtents);
-    scenes::Level level;
-    level.meshes.push_back(builder.finish());
-    return level;
-}
-
-scenes::Object boxObject(const std::string& name, glm::vec3 position, std::vector<glm::vec3> levels, int material) {
-    scenes::Object object;
-    object.name = name;
-    object.transform = glm::translate(glm::mat4(1.0f), position);
-    for (glm::vec3 halfExtents : levels) object.levels.push_back(boxLevel(halfExtents, material));
-    return object;
-}
 
 // Camera at z = 10 looking at the origin.
 //   visible:  a box at the origin whose levels 0 and 1 are identical (merged), level 2 smaller

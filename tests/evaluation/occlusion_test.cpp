@@ -11,24 +11,12 @@
 #include "evaluation/evaluation.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/mesh_builder.hpp"
+#include "box_objects.hpp"
 
 using namespace lodopt;
+using lodopt::test_scenes::boxObject;
 
 namespace {
-
-scenes::Object boxObject(const std::string& name, glm::vec3 position, std::vector<glm::vec3> levels, int material) {
-    scenes::Object object;
-    object.name = name;
-    object.transform = glm::translate(glm::mat4(1.0f), position);
-    for (glm::vec3 halfExtents : levels) {
-        scenes::MeshBuilder builder(material);
-        builder.addBox(glm::vec3(0.0f), halfExtents);
-        scenes::Level level;
-        level.meshes.push_back(builder.finish());
-        object.levels.push_back(std::move(level));
-    }
-    return object;
-}
 
 // Camera at z = 10 looking at the origin. `front` (two levels, the coarser a little smaller)
 // stands before `back`, which is wider, so `back` shows left and right of it.
