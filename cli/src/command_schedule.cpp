@@ -6,6 +6,7 @@
 // (SIGINT/SIGTERM) stops after the current batch and --resume continues from it
 // (schedule_checkpoint.hpp): without --render the outputs equal an uninterrupted run's, wall
 // times aside. The checkpoint is removed once frames.csv and summary.json are written.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -23,6 +24,7 @@
 #include "schedule_checkpoint.hpp"
 #include "schedule_common.hpp"
 #include "scheduler/coefficients.hpp"
+#include "scheduler/measurement.hpp"
 #include "scheduler/scheduler.hpp"
 #include "time_profile.hpp"
 #include "timemodel/features.hpp"
@@ -60,6 +62,10 @@ struct ScheduleOptions {
     // measurements of one frame a third of the time on an idle machine (docs/scheduler.md).
     int repeats = 5;
     std::string frameTime = "min";
+    // After the path, the first, middle and last frames' decisions are each timed this often back to
+    // back: how far one frame's measurement scatters here bounds what any scheduler can put
+    // within ±10% of the budget (scheduler/measurement.hpp). Not part of a frame's row.
+    int noiseProbe = 20;
     int batch = 25;
     bool resume = false;
     std::string outDir = "out/schedule";
@@ -342,6 +348,40 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     }
     progress.finish();
 
+    // The measurement ceiling: the first and last frames' decisions, timed again and again.
+    nlohmann::json ceilingJson;
+    double ceilingMean = NAN;
+    std::vector<int> probedFrames;
+    if (renderer && options.noiseProbe > 0 && !rows.empty()) {
+        std::vector<std::size_t> probed = {0};
+        if (rows.size() > 2) probed.push_back(rows.size() / 2);
+        if (rows.size() > 1) probed.push_back(rows.size() - 1);
+        nlohmann::json probes = nlohmann::json::array();
+        double sum = 0.0;
+        for (std::size_t r : probed) {
+            const scenes::Camera& camera = path.frames[std::size_t(rows[r].frame)];
+            std::vector<double> times;
+            for (int k = 0; k < options.noiseProbe; ++k) {
+                times.push_back(renderer->timeRender(rows[r].decision.levels, camera, options.repeats, 1, statistic));
+            }
+            const double ceiling = scheduler::bandCeiling(times, 0.1);
+            std::vector<double> sorted = times;
+            std::sort(sorted.begin(), sorted.end());
+            const double median = spreadOf(times).median;
+            auto ratioAt = [&](double q) { return sorted[std::size_t(q * double(sorted.size() - 1) + 0.5)] / median; };
+            probes.push_back({{"frame", rows[r].frame},
+                              {"measurements", times.size()},
+                              {"median_ms", median},
+                              {"p10_ratio", ratioAt(0.1)},
+                              {"p90_ratio", ratioAt(0.9)},
+                              {"ceiling", ceiling}});
+            sum += ceiling;
+            probedFrames.push_back(rows[r].frame);
+        }
+        ceilingMean = sum / double(probed.size());
+        ceilingJson = {{"tolerance", 0.1}, {"ceiling", ceilingMean}, {"probes", probes}};
+    }
+
     // Summary.
     std::vector<double> decisionUs, predicted, measured, baselineMeasured, fitness, baselineFitness, error,
         featureError;
@@ -415,6 +455,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
                 {"reachable", sharesJson(budgetShares(rows, budget, baselineOf, reachable))},
                 {"binding", sharesJson(budgetShares(rows, budget, baselineOf, binding))}};
         }
+        if (!ceilingJson.is_null()) summary["measurement_ceiling"] = ceilingJson;
         if (!options.noFitness) {
             summary["fitness"] = spreadJson(spreadOf(fitness));
             if (!options.noBaseline) summary["baseline_fitness"] = spreadJson(spreadOf(baselineFitness));
@@ -445,6 +486,12 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
             std::cout << " (unscheduled: " << 100.0 * b.within10 << "%, " << 100.0 * b.atMost110 << "%)";
         }
         std::cout << "\n";
+        if (!std::isnan(ceilingMean)) {
+            std::cout << "  measurement ceiling " << 100.0 * ceilingMean << "%: one frame timed " << options.noiseProbe
+                      << " times fits a ±10% band at best that often (frames";
+            for (int f : probedFrames) std::cout << ' ' << f;
+            std::cout << ")\n";
+        }
         if (!options.noFitness) {
             std::cout << std::setprecision(4) << "  fitness " << spreadOf(fitness).mean << " mean";
             if (!options.noBaseline) std::cout << " (unscheduled " << spreadOf(baselineFitness).mean << ")";
@@ -517,6 +564,12 @@ void addScheduleCommand(CLI::App& app) {
     command->add_option("--frame-time", options->frameTime,
                         "With --render: a frame's measured time is the median or the least of its timed draws")
         ->check(CLI::IsMember({"median", "min"}))
+        ->capture_default_str();
+    command
+        ->add_option("--noise-probe", options->noiseProbe,
+                     "With --render: after the path, time the first, middle and last frames this often each to report "
+                     "the measurement ceiling (0: skip)")
+        ->check(CLI::Range(0, 10000))
         ->capture_default_str();
     command->add_option("--batch", options->batch, "Frames per checkpoint (the unit an interrupt waits for)")
         ->check(CLI::Range(1, 1000000))

@@ -395,6 +395,24 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
     EXPECT_TRUE(summary.contains("baseline_vs_budget"));
     EXPECT_EQ(summary["frame_time"]["statistic"], "min");  // the default
     EXPECT_EQ(summary["frame_time"]["draws"], 1);
+    // The measurement ceiling: the first, middle and last frames timed 20 times each (default).
+    const nlohmann::json& ceiling = summary["measurement_ceiling"];
+    ASSERT_EQ(ceiling["probes"].size(), 3u);
+    EXPECT_EQ(ceiling["probes"][0]["frame"], 0);
+    EXPECT_EQ(ceiling["probes"][1]["frame"], 4);
+    EXPECT_EQ(ceiling["probes"][2]["frame"], 7);
+    double sum = 0.0;
+    for (const nlohmann::json& probe : ceiling["probes"]) {
+        EXPECT_EQ(probe["measurements"], 20);
+        EXPECT_GT(probe["median_ms"].get<double>(), 0.0);
+        EXPECT_LE(probe["p10_ratio"].get<double>(), 1.0);
+        EXPECT_GE(probe["p90_ratio"].get<double>(), 1.0);
+        // At least the median's own neighbours share a band: 1/20 is the floor.
+        EXPECT_GE(probe["ceiling"].get<double>(), 0.05);
+        EXPECT_LE(probe["ceiling"].get<double>(), 1.0);
+        sum += probe["ceiling"].get<double>();
+    }
+    EXPECT_DOUBLE_EQ(ceiling["ceiling"].get<double>(), sum / 3.0);
     const std::string csv = readFile(std::filesystem::path(out) / "frames.csv");
     std::istringstream lines(csv);
     std::string header;
@@ -436,6 +454,8 @@ TEST_F(SchedulerCli, BadInputExitsWithTwo) {
               2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-rule dwell" + common).exitCode,
               2);
+    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --render --noise-probe -1" + common).exitCode,
+              2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-margin 1" + common).exitCode, 2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-refill 1" + common).exitCode, 2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-refill -0.1" + common).exitCode,
@@ -447,13 +467,15 @@ TEST_F(SchedulerCli, FrameTimeCanBeTheMedianOfTheDraws) {
     const CommandResult result =
         run("schedule --scene harbor --path " + sPath + " --budget-ms " + std::to_string(sBudget) +
             " --size 128x128 --profile " + sProfile +
-            " --render --no-fitness --repeats 3 --frame-time median --frames 3 --out " + out + " --json --quiet");
+            " --render --no-fitness --repeats 3 --frame-time median --frames 3 --noise-probe 0 --out " + out +
+            " --json --quiet");
     ASSERT_EQ(result.exitCode, 0) << result.output;
     const nlohmann::json summary = parseOrFail(result);
     EXPECT_EQ(summary["frame_time"]["statistic"], "median");
     EXPECT_EQ(summary["frame_time"]["draws"], 3);
     EXPECT_EQ(summary["frames"], 3);
     EXPECT_GT(summary["measured_ms"]["median"].get<double>(), 0.0);
+    EXPECT_FALSE(summary.contains("measurement_ceiling"));  // --noise-probe 0
 }
 
 // ---- schedule: interrupts and --resume ----------------------------------------------------
