@@ -181,11 +181,17 @@ TEST_F(ReportCli, SchedulePageFromHandMadeFrames) {
                                          "0,12.5,4.0,4.4,9.0,0,2,0,0\n"
                                          "1,11.0,3.8,,9.1,1,1,1,0\n"
                                          "2,10.5,3.9,4.1,9.2,1,0,1,1\n";
-    std::ofstream(dir / "summary.json") << R"({"scene": "forest", "path": "walk", "budget_ms": 4.0})";
+    std::ofstream(dir / "summary.json") << R"({"scene": "forest", "path": "walk", "budget_ms": 4.0,
+        "measured_vs_budget": {"binding": {"frames": 2, "within_10_percent": 0.5}},
+        "measurement_ceiling": {"ceiling": 0.85}})";
     const CommandResult result = run("report " + dir.string() + " --json");
     ASSERT_EQ(result.exitCode, 0);
     const std::string html = readText(dir / "report.html");
     EXPECT_NE(html.find("schedule: forest / walk"), std::string::npos);
+    // Goal 1 beside the measurement ceiling.
+    EXPECT_NE(html.find("within ±10% of the budget on 50% of the 2 frames where the budget binds; measurement "
+                        "ceiling 85%"),
+              std::string::npos);
     // The levels table: object-frames per level and their share of 6.
     EXPECT_NE(html.find("<td>level 0</td><td>3</td><td>50%</td>"), std::string::npos);
     EXPECT_NE(html.find("<td>level 2</td><td>1</td><td>16.7%</td>"), std::string::npos);
