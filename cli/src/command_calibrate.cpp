@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -148,7 +149,7 @@ void runCalibrate(const CalibrateOptions& options) {
 
     timemodel::DeviceProfile profile;
     std::vector<timemodel::Sample> fitSamples, heldOutSamples;
-    std::vector<double> spreads;
+    std::vector<double> spreads, halves;
     for (std::size_t i = 0; i < count; ++i) {
         const timemodel::PlannedSample& planned = plan.samples[i];
         const SampleTimings& t = timings[i];
@@ -168,6 +169,16 @@ void runCalibrate(const CalibrateOptions& options) {
         const auto [low, high] = std::minmax_element(perPass.begin(), perPass.end());
         if (sample.measuredMs > 0.0) spreads.push_back((*high - *low) / median(perPass));
         recorded.heldOut = plan.viewpoints[planned.viewpoint].heldOut;
+        // Repeatability: the sample's time from the even passes against the odd ones, by the same
+        // statistic (least for wall-min, median for the others), relative to the time fitted.
+        if (recorded.heldOut && perPass.size() >= 2 && sample.measuredMs > 0.0) {
+            std::vector<double> even, odd;
+            for (std::size_t k = 0; k < perPass.size(); ++k) (k % 2 ? odd : even).push_back(perPass[k]);
+            auto statistic = [&](const std::vector<double>& v) {
+                return options.clock == "wall-min" ? *std::min_element(v.begin(), v.end()) : median(v);
+            };
+            halves.push_back(std::abs(statistic(even) - statistic(odd)) / sample.measuredMs);
+        }
         (recorded.heldOut ? heldOutSamples : fitSamples).push_back(sample);
         profile.samples.push_back(recorded);
     }
@@ -213,7 +224,15 @@ void runCalibrate(const CalibrateOptions& options) {
     profile.heldOutViewpoints = static_cast<int>(std::count_if(
         plan.viewpoints.begin(), plan.viewpoints.end(), [](const timemodel::Viewpoint& v) { return v.heldOut; }));
     const timemodel::ErrorStats spread = timemodel::summarizeErrors(spreads);
-    profile.timing = {options.clock, passes, options.repeats, options.warmup, spread.median, spread.p90, 0.0};
+    const timemodel::ErrorStats repeatability = timemodel::summarizeErrors(halves);
+    profile.timing.clock = options.clock;
+    profile.timing.rounds = passes;
+    profile.timing.repeatsPerRound = options.repeats;
+    profile.timing.warmup = options.warmup;
+    profile.timing.medianSpread = spread.median;
+    profile.timing.p90Spread = spread.p90;
+    profile.timing.splitHalfMedian = repeatability.median;
+    profile.timing.splitHalfP90 = repeatability.p90;
     profile.timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     timemodel::saveProfile(options.out, profile);
 
@@ -257,6 +276,8 @@ void runCalibrate(const CalibrateOptions& options) {
                    {"clock", options.clock},
                    {"timing_spread_median", spread.median},
                    {"timing_spread_p90", spread.p90},
+                   {"split_half_median", repeatability.median},
+                   {"split_half_p90", repeatability.p90},
                    {"seconds", profile.timing.seconds},
                    {"default_model", profile.defaultModel},
                    {"models", models},
@@ -270,10 +291,12 @@ void runCalibrate(const CalibrateOptions& options) {
     std::snprintf(line, sizeof line,
                   "%zu samples: %zu fitted on %d viewpoints, %zu held out on %d viewpoints\n"
                   "timing: clock %s, %d passes x %d draws (+%d warm-up); spread between passes: median %.1f%%, "
-                  "p90 %.1f%%\n",
+                  "p90 %.1f%%\n"
+                  "repeatability: a held-out sample's time from the even passes against the odd ones differs by "
+                  "median %.1f%%, p90 %.1f%%\n",
                   count, fitSamples.size(), profile.viewpoints - profile.heldOutViewpoints, heldOutSamples.size(),
                   profile.heldOutViewpoints, options.clock.c_str(), passes, options.repeats, options.warmup,
-                  100.0 * spread.median, 100.0 * spread.p90);
+                  100.0 * spread.median, 100.0 * spread.p90, 100.0 * repeatability.median, 100.0 * repeatability.p90);
     std::cout << line << timemodel::formatErrorTable(profile.models);
     for (const timemodel::ModelResult& r : profile.models) {
         for (const std::string& note : r.fit.notes) std::cout << "  note (" << r.name << "): " << note << "\n";

@@ -41,7 +41,7 @@ protected:
         std::filesystem::create_directories(sDir);
         sProfile = (sDir / "device.json").string();
         sCalibration =
-            run("calibrate --scene harbor --samples 24 --jitter 1 --rounds 1 --max-rounds 1 --repeats 1 "
+            run("calibrate --scene harbor --samples 24 --jitter 1 --rounds 2 --max-rounds 2 --repeats 1 "
                 "--warmup 1 --size 96x72 --seed 3 --out " +
                 sProfile + " --json");
     }
@@ -85,6 +85,13 @@ TEST_F(TimeModelCli, CalibrateFitsEveryModelAndWritesAProfile) {
     EXPECT_NE(profile.glRenderer.find("llvmpipe"), std::string::npos) << profile.glRenderer;
     EXPECT_FALSE(profile.machine.cpuModel.empty());
     for (const auto& s : profile.samples) EXPECT_GT(s.sample.measuredMs, 0.0);
+    // Two passes: each held-out sample timed twice, the two compared (repeatability).
+    EXPECT_EQ(profile.timing.rounds, 2);
+    const double halfMedian = report["split_half_median"].get<double>();
+    EXPECT_GT(halfMedian, 0.0);  // two least-of-one draws on a nanosecond clock are never equal
+    EXPECT_GE(report["split_half_p90"].get<double>(), halfMedian);
+    EXPECT_DOUBLE_EQ(profile.timing.splitHalfMedian, halfMedian);
+    EXPECT_DOUBLE_EQ(profile.timing.splitHalfP90, report["split_half_p90"].get<double>());
 }
 
 TEST_F(TimeModelCli, EstimateFromTheProfilePredictsEveryModel) {

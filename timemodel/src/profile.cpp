@@ -171,6 +171,8 @@ std::string profileToJson(const DeviceProfile& profile) {
             {"warmup", t.warmup},
             {"median_spread", t.medianSpread},
             {"p90_spread", t.p90Spread},
+            {"split_half_median", t.splitHalfMedian},
+            {"split_half_p90", t.splitHalfP90},
             {"seconds", t.seconds}}}}},
         {"default_model", profile.defaultModel},
         {"models", models},
@@ -234,6 +236,11 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
     profile.timing.medianSpread = read.number(timing, "median_spread", "calibration.timing");
     profile.timing.p90Spread = read.number(timing, "p90_spread", "calibration.timing");
     profile.timing.seconds = read.number(timing, "seconds", "calibration.timing");
+    // Optional: profiles written before it was recorded.
+    if (timing.contains("split_half_median")) {
+        profile.timing.splitHalfMedian = read.number(timing, "split_half_median", "calibration.timing");
+        profile.timing.splitHalfP90 = read.number(timing, "split_half_p90", "calibration.timing");
+    }
     profile.defaultModel = read.text(document, "default_model", "document");
 
     // Features by name: a profile written before a feature existed lacks it, and its

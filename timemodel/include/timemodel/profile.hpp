@@ -53,6 +53,11 @@ struct TimingSettings {
     double medianSpread = 0.0;  // median over samples of (max − min) / median across passes
     double p90Spread = 0.0;
     double seconds = 0.0;  // wall time of the whole calibration
+    // Held-out samples' time from the even passes against the odd ones (same statistic), as a
+    // share of the time fitted: median and p90. How far the clock itself moves a sample; 0 in
+    // profiles written before it was recorded, or with one pass.
+    double splitHalfMedian = 0.0;
+    double splitHalfP90 = 0.0;
 };
 
 struct ProfileSample {
