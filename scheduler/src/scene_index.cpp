@@ -4,8 +4,12 @@
 #include "scheduler/scene_index.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 #include "scheduler/switch_control.hpp"
 
@@ -175,8 +179,8 @@ scenes::Object proxyOf(const scenes::Object& object) {
 
 }  // namespace
 
-SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode)
-    : mScene(scene), mWidth(width), mHeight(height), mMode(mode) {
+SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode, int threads)
+    : mScene(scene), mWidth(width), mHeight(height), mMode(mode), mThreads(threads) {
     assert(width > 0 && height > 0);
     const int objects = int(scene.objects.size());
     mShapes.reserve(objects);
@@ -245,10 +249,8 @@ void SceneIndex::measureCanonical() {
     c.proxies.resize(std::size_t(objectCount()));
     c.proxyUnseen.resize(std::size_t(levels));
     c.proxyScale.resize(std::size_t(levels));
-    scenes::Scene single;
-    single.materials = mScene.materials;
-    single.textures = textureSizes;
-    for (int o = 0; o < objectCount(); ++o) {
+    // Objects are measured independently, each into its own slots: spread over threads.
+    auto measureObject = [&](int o, scenes::Scene& single) {
         single.objects.assign(1, mScene.objects[o]);
         scenes::Scene& proxy = c.proxies[std::size_t(o)];
         proxy.materials = mScene.materials;
@@ -334,7 +336,31 @@ void SceneIndex::measureCanonical() {
                 exponent[f] = code;
             }
         }
-    }
+    };
+    const int threads = std::clamp(mThreads > 0 ? mThreads : int(std::thread::hardware_concurrency()), 1,
+                                   std::max(1, objectCount()));
+    std::atomic<int> next{0};
+    std::exception_ptr failure;
+    std::mutex failureMutex;
+    auto worker = [&] {
+        scenes::Scene single;  // the object alone, with the scene's materials and texture sizes
+        single.materials = mScene.materials;
+        single.textures = textureSizes;
+        for (int o = next++; o < objectCount(); o = next++) {
+            try {
+                measureObject(o, single);
+            } catch (...) {
+                const std::lock_guard lock(failureMutex);
+                if (!failure) failure = std::current_exception();
+                next = objectCount();
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& thread : pool) thread.join();
+    if (failure) std::rethrow_exception(failure);
 }
 
 void SceneIndex::beginFrame(const scenes::Camera& camera, FrameObjects& out) const {

@@ -95,6 +95,33 @@ TEST(SceneIndex, BoundsFeaturesTrackExactOnes) {
     EXPECT_GT(compared, 20);
 }
 
+TEST(SceneIndex, MeasuringOnThreadsChangesNothing) {
+    // Each object's canonical measurements go to its own slots, whichever thread takes it.
+    const scenes::Scene scene = testing::makeGridScene(4, 3, 5.0f);
+    const SceneIndex one(scene, 128, 96, FeatureMode::Bounds, 1);
+    const SceneIndex three(scene, 128, 96, FeatureMode::Bounds, 3);
+    FrameObjects a, b;
+    int compared = 0;
+    for (const scenes::Camera& camera : {testing::lookAt({3, 6, 18}, {0, 0, 0}), testing::lookAt({1, 2, 9}, {3, 1, 0}),
+                                         testing::lookAt({0.5f, 1, 0.5f}, {4, 1, 0})}) {  // inside the grid: proxies
+        one.beginFrame(camera, a);
+        three.beginFrame(camera, b);
+        for (int o = 0; o < one.objectCount(); ++o) {
+            ASSERT_EQ(one.observe(o, a), three.observe(o, b));
+            if (!a.visible[std::size_t(o)]) continue;
+            for (int l = 0; l < one.levelCount(o); ++l) {
+                const timemodel::FrameFeatures& fa = a.contributions[one.firstLevel(o) + l];
+                const timemodel::FrameFeatures& fb = b.contributions[three.firstLevel(o) + l];
+                for (std::size_t k = 0; k < timemodel::kFeatureCount; ++k) {
+                    EXPECT_EQ(fa.values[k], fb.values[k]) << "object " << o << " level " << l << " feature " << k;
+                }
+                ++compared;
+            }
+        }
+    }
+    EXPECT_GT(compared, 20);
+}
+
 TEST(Quadtree, EveryObjectInOneLeafWithinCapacity) {
     const scenes::Scene scene = testing::makeGridScene(12, 9, 3.0f);
     const SceneIndex index(scene, 64, 64, FeatureMode::Exact);

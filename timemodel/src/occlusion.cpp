@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace lodopt::timemodel::detail {
 
@@ -18,21 +19,57 @@ struct ScreenVertex {
     double x, y, z;  // grid pixels, NDC depth
 };
 
+// The columns [first, last] of row y whose centres can lie in the triangle: the x-extent of the
+// part of the triangle within one cell of the row's sample line, widened by a cell. Points the
+// exact test below accepts lie within far less than a cell of the triangle, so the cells left
+// out are ones it rejects: a conservative span, the same counts (DepthPass.SpansCountWhatTheBoxCounts).
+bool rowSpan(const ScreenVertex* v, double py, int& first, int& last) {
+    const double low = py - 1.0, high = py + 1.0;
+    double xMin = std::numeric_limits<double>::infinity(), xMax = -xMin;
+    for (int k = 0; k < 3; ++k) {
+        const ScreenVertex& p = v[k];
+        const ScreenVertex& q = v[(k + 1) % 3];
+        if (p.y >= low && p.y <= high) {
+            xMin = std::min(xMin, p.x);
+            xMax = std::max(xMax, p.x);
+        }
+        for (double line : {low, high}) {
+            if ((p.y - line) * (q.y - line) <= 0.0 && p.y != q.y) {
+                const double x = p.x + (line - p.y) * (q.x - p.x) / (q.y - p.y);
+                xMin = std::min(xMin, x);
+                xMax = std::max(xMax, x);
+            }
+        }
+    }
+    if (!(xMin <= xMax)) return false;  // the band misses the triangle (or NaN)
+    first = int(std::floor(xMin - 0.5)) - 1;
+    last = int(std::ceil(xMax - 0.5)) + 1;
+    return true;
+}
+
 // Rasterizes one screen-space triangle with pixel-centre sampling and a LESS depth test;
-// counts the covered and the passing cells.
+// counts the covered and the passing cells. `everyCell` tests the whole bounding box (the
+// reference the spans are checked against).
 void rasterize(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, Grid& grid, std::uint64_t& covered,
-               std::uint64_t& passed) {
+               std::uint64_t& passed, bool everyCell) {
     const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     if (area == 0.0 || !std::isfinite(area)) return;
     const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, c.x}))));
     const int x1 = std::min(grid.width - 1, int(std::ceil(std::max({a.x, b.x, c.x}))));
     const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, c.y}))));
     const int y1 = std::min(grid.height - 1, int(std::ceil(std::max({a.y, b.y, c.y}))));
+    const ScreenVertex corners[3] = {a, b, c};
     for (int y = y0; y <= y1; ++y) {
         // Samples a hair off the cell centre, so that the shared edge of two triangles (a
         // quad's diagonal) does not cover a centre twice and count as a failed depth test.
         const double py = y + 0.5 + 2.3e-4;
-        for (int x = x0; x <= x1; ++x) {
+        int first = x0, last = x1;
+        if (!everyCell) {
+            if (!rowSpan(corners, py, first, last)) continue;
+            first = std::max(first, x0);
+            last = std::min(last, x1);
+        }
+        for (int x = first; x <= last; ++x) {
             const double px = x + 0.5 + 1.1e-4;
             const double w0 = ((b.x - px) * (c.y - py) - (b.y - py) * (c.x - px)) / area;
             const double w1 = ((c.x - px) * (a.y - py) - (c.y - py) * (a.x - px)) / area;
@@ -53,7 +90,7 @@ void rasterize(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex&
 }  // namespace
 
 std::vector<double> depthPassShares(const scenes::Scene& scene, const glm::mat4& viewProjection, float aspect,
-                                    int resolution) {
+                                    int resolution, bool everyCell) {
     Grid grid;
     grid.width = aspect >= 1.0f ? resolution : std::max(1, int(std::lround(resolution * aspect)));
     grid.height = aspect >= 1.0f ? std::max(1, int(std::lround(resolution / aspect))) : resolution;
@@ -88,7 +125,7 @@ std::vector<double> depthPassShares(const scenes::Scene& scene, const glm::mat4&
                                  (polygon[k].y / w * 0.5 + 0.5) * grid.height, polygon[k].z / w};
                 }
                 for (int k = 1; k + 1 < count; ++k)
-                    rasterize(screen[0], screen[k], screen[k + 1], grid, covered, passed);
+                    rasterize(screen[0], screen[k], screen[k + 1], grid, covered, passed, everyCell);
             }
         }
         if (covered > 0) shares[o] = double(passed) / double(covered);

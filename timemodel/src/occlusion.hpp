@@ -14,8 +14,10 @@ namespace lodopt::timemodel::detail {
 
 // Per object: passed / rasterized fragments on a grid whose longer side is `resolution`
 // cells (1 when the object rasterizes no fragment). `viewProjection` maps world to clip
-// space; `aspect` = width / height of the real viewport.
+// space; `aspect` = width / height of the real viewport. Each triangle is sampled only on the
+// cells of each row it can reach; `everyCell` samples its whole bounding box instead (the
+// slower reference: the same shares).
 std::vector<double> depthPassShares(const scenes::Scene& scene, const glm::mat4& viewProjection, float aspect,
-                                    int resolution = 128);
+                                    int resolution = 128, bool everyCell = false);
 
 }  // namespace lodopt::timemodel::detail

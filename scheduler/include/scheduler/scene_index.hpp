@@ -78,8 +78,10 @@ struct FrameObjects {
 class SceneIndex {
 public:
     // `scene` must outlive the index (Exact mode reads its geometry every frame). `width`,
-    // `height` > 0: the render size in pixels, as calibrated for the time model.
-    SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode);
+    // `height` > 0: the render size in pixels, as calibrated for the time model. Bounds mode
+    // measures every object from canonical cameras here, on `threads` threads (0: one per
+    // core); the result does not depend on the count.
+    SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode, int threads = 0);
     ~SceneIndex();
     SceneIndex(const SceneIndex&) = delete;
     SceneIndex& operator=(const SceneIndex&) = delete;
@@ -116,6 +118,7 @@ private:
     int mWidth;
     int mHeight;
     FeatureMode mMode;
+    int mThreads = 0;
     int mMaxLevels = 1;
     std::vector<ObjectShape> mShapes;
     std::vector<int> mFirstLevel;  // per object + end sentinel
