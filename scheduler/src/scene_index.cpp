@@ -88,20 +88,28 @@ ProjectedBox projectBox(const scenes::Bounds& box, const glm::mat4& mvp, int wid
     bool any = false;
     auto nearDistance = [](const glm::vec4& p) { return p.z + p.w; };
     auto farDistance = [](const glm::vec4& p) { return p.w - p.z; };
-    for (int a = 0; a < 8; ++a) {
+    auto add = [&](const glm::vec4& point) {
+        if (point.w <= 0.0f) return;
+        const float x = point.x / point.w, y = point.y / point.w;
+        minX = std::min(minX, x);
+        maxX = std::max(maxX, x);
+        minY = std::min(minY, y);
+        maxY = std::max(maxY, y);
+        any = true;
+    };
+    // Most boxes lie between the planes: then no edge is clipped, every edge ends at corners
+    // and the outline is the corners' (the same values, a third of the divisions).
+    bool inside = true;
+    for (const glm::vec4& corner : corners)
+        inside = inside && nearDistance(corner) >= 0.0f && farDistance(corner) >= 0.0f;
+    for (int a = 0; a < 8 && inside; ++a) add(corners[a]);
+    for (int a = 0; a < 8 && !inside; ++a) {
         for (int axis = 1; axis < 8; axis <<= 1) {
             if (a & axis) continue;
             glm::vec4 p = corners[a], q = corners[a | axis];
             if (!clipSegment(p, q, nearDistance) || !clipSegment(p, q, farDistance)) continue;
-            for (const glm::vec4& point : {p, q}) {
-                if (point.w <= 0.0f) continue;
-                const float x = point.x / point.w, y = point.y / point.w;
-                minX = std::min(minX, x);
-                maxX = std::max(maxX, x);
-                minY = std::min(minY, y);
-                maxY = std::max(maxY, y);
-                any = true;
-            }
+            add(p);
+            add(q);
         }
     }
     if (!any) return result;
@@ -141,6 +149,10 @@ namespace {
 // of the object is in view (a terrain under the eye), so the object's proxy is measured.
 constexpr float kProxyWithinRadii = 1.5f;
 constexpr std::size_t kProxyTriangles = 256;
+// The proxy's depth pass, measured at set-up and again every frame the object is near the eye,
+// on a coarser grid than the time model's: a proxy fills the view there, and at 128 cells its
+// pass cost about as much as the rest of a city decision.
+constexpr int kProxyDepthPassCells = 32;
 
 // `object` with every level's triangles thinned to an even sample of at most kProxyTriangles.
 scenes::Object proxyOf(const scenes::Object& object) {
@@ -272,7 +284,7 @@ void SceneIndex::measureCanonical() {
         away.target = away.position + glm::vec3(0.0f, 0.0f, nearDistance);  // looking away
         const timemodel::FeatureTable unseen(single, away, mWidth, mHeight);
         const int count = levelCount(o);
-        const timemodel::FeatureTable proxyUnseen(proxy, away, mWidth, mHeight);
+        const timemodel::FeatureTable proxyUnseen(proxy, away, mWidth, mHeight, kProxyDepthPassCells);
         for (int l = 0; l < count; ++l) {
             c.unseen[mFirstLevel[o] + l] = unseen.contribution(0, l);
             c.proxyUnseen[mFirstLevel[o] + l] = proxyUnseen.contribution(0, l);
@@ -293,7 +305,8 @@ void SceneIndex::measureCanonical() {
             std::unique_ptr<timemodel::FeatureTable> farTable, proxyTable;
             glm::mat4 farVp(1.0f);
             if (axis) {
-                proxyTable = std::make_unique<timemodel::FeatureTable>(proxy, nearCamera, mWidth, mHeight);
+                proxyTable =
+                    std::make_unique<timemodel::FeatureTable>(proxy, nearCamera, mWidth, mHeight, kProxyDepthPassCells);
                 const scenes::Camera farCamera = cameraAt(c.directions[k], nearDistance * kFarFactor);
                 farTable = std::make_unique<timemodel::FeatureTable>(single, farCamera, mWidth, mHeight);
                 farVp = scenes::projectionMatrix(farCamera, float(aspect)) * scenes::viewMatrix(farCamera);
@@ -337,8 +350,8 @@ void SceneIndex::measureCanonical() {
             }
         }
     };
-    const int threads = std::clamp(mThreads > 0 ? mThreads : int(std::thread::hardware_concurrency()), 1,
-                                   std::max(1, objectCount()));
+    const int threads =
+        std::clamp(mThreads > 0 ? mThreads : int(std::thread::hardware_concurrency()), 1, std::max(1, objectCount()));
     std::atomic<int> next{0};
     std::exception_ptr failure;
     std::mutex failureMutex;
@@ -394,7 +407,8 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
     glm::vec3 toEye = out.camera.position - shape.center;
     const float length = glm::length(toEye);
     if (length < kProxyWithinRadii * shape.radius) {
-        const timemodel::FeatureTable table(c.proxies[std::size_t(object)], out.camera, mWidth, mHeight);
+        const timemodel::FeatureTable table(c.proxies[std::size_t(object)], out.camera, mWidth, mHeight,
+                                            kProxyDepthPassCells);
         for (int l = 0; l < count; ++l) {
             const int index = first + l;
             FrameFeatures& f = out.contributions[index];

@@ -241,6 +241,20 @@ TEST(FeatureTable, ShadedPixelsFollowTheDepthTestInDrawOrder) {
     }
 }
 
+TEST(FeatureTable, ACoarserDepthPassChangesOnlyTheShares) {
+    // The depth pass's grid only sets the shaded share; on a coarse grid the far quad of
+    // the near-first pair still fails (nearly) everywhere and every other feature is the same.
+    const scenes::Scene scene = twoQuads(true);
+    const timemodel::FeatureTable fine(scene, scene.views[0], 100, 100);
+    const timemodel::FeatureTable coarse(scene, scene.views[0], 100, 100, 16);
+    for (int o = 0; o < 2; ++o) {
+        EXPECT_EQ(fine.contribution(o, 0)[Feature::kRasterPixels], coarse.contribution(o, 0)[Feature::kRasterPixels]);
+        EXPECT_EQ(fine.contribution(o, 0)[Feature::kTriangles], coarse.contribution(o, 0)[Feature::kTriangles]);
+    }
+    EXPECT_NEAR(coarse.contribution(0, 0)[Feature::kShadedPixels], 100.0 * 100.0, 1.0);
+    EXPECT_LT(coarse.contribution(1, 0)[Feature::kShadedPixels], 0.07 * 100.0 * 100.0);
+}
+
 namespace {
 
 // A far object made of a textured left half and a plain right half (z = -4), and a plain

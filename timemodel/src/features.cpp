@@ -176,11 +176,13 @@ glm::mat4 viewProjectionMatrix(const scenes::Camera& camera, int width, int heig
 
 }  // namespace
 
-FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height) {
-    assert(width > 0 && height > 0);
+FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height,
+                           int depthPassCells) {
+    assert(width > 0 && height > 0 && depthPassCells > 0);
     const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
     mFirstLevel.reserve(scene.objects.size() + 1);
-    const std::vector<double> shares = detail::depthPassShares(scene, viewProjection, float(width) / float(height));
+    const std::vector<double> shares =
+        detail::depthPassShares(scene, viewProjection, float(width) / float(height), depthPassCells);
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const scenes::Object& object = scene.objects[o];
         mFirstLevel.push_back(static_cast<int>(mContributions.size()));

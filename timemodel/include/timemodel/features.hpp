@@ -106,8 +106,12 @@ void addRasterFeatures(const scenes::Mesh& mesh, const glm::mat4& modelViewProje
 // every level's geometry once (O(total vertices + triangles), a few ms per million).
 class FeatureTable {
 public:
-    // `width`, `height` > 0: the render size in pixels.
-    FeatureTable(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height);
+    // `width`, `height` > 0: the render size in pixels. `depthPassCells`: the longer side of
+    // the software depth pass's grid that gives the shaded-fragment shares (kDepthPassCells; a
+    // caller that only needs rough shares of small objects may take fewer).
+    static constexpr int kDepthPassCells = 128;
+    FeatureTable(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height,
+                 int depthPassCells = kDepthPassCells);
 
     int objectCount() const { return static_cast<int>(mFirstLevel.size()) - 1; }
     int levelCount(int object) const;
