@@ -192,6 +192,49 @@ nlohmann::json spreadJson(const Spread& s) {
     return {{"median", s.median}, {"p90", s.p90}, {"max", s.max}, {"mean", s.mean}};
 }
 
+// The measurement ceiling (scheduler/measurement.hpp): the first, middle and last rows'
+// decisions, each timed `measurements` times back to back as a frame is timed.
+struct MeasurementCeiling {
+    nlohmann::json json;  // null when nothing was probed
+    double mean = NAN;    // of the probes' ceilings
+    std::vector<int> frames;
+};
+
+MeasurementCeiling probeMeasurementCeiling(renderer::Renderer& renderer, const scenes::CameraPath& path,
+                                           const std::vector<FrameRow>& rows, int measurements, int repeats,
+                                           renderer::Renderer::Statistic statistic) {
+    MeasurementCeiling result;
+    if (rows.empty() || measurements <= 0) return result;
+    std::vector<std::size_t> probed = {0};
+    if (rows.size() > 2) probed.push_back(rows.size() / 2);
+    if (rows.size() > 1) probed.push_back(rows.size() - 1);
+    nlohmann::json probes = nlohmann::json::array();
+    double sum = 0.0;
+    for (std::size_t r : probed) {
+        const scenes::Camera& camera = path.frames[std::size_t(rows[r].frame)];
+        std::vector<double> times;
+        for (int k = 0; k < measurements; ++k) {
+            times.push_back(renderer.timeRender(rows[r].decision.levels, camera, repeats, 1, statistic));
+        }
+        const double ceiling = scheduler::bandCeiling(times, 0.1);
+        std::vector<double> sorted = times;
+        std::sort(sorted.begin(), sorted.end());
+        const double median = spreadOf(times).median;
+        auto ratioAt = [&](double q) { return sorted[std::size_t(q * double(sorted.size() - 1) + 0.5)] / median; };
+        probes.push_back({{"frame", rows[r].frame},
+                          {"measurements", times.size()},
+                          {"median_ms", median},
+                          {"p10_ratio", ratioAt(0.1)},
+                          {"p90_ratio", ratioAt(0.9)},
+                          {"ceiling", ceiling}});
+        sum += ceiling;
+        result.frames.push_back(rows[r].frame);
+    }
+    result.mean = sum / double(probed.size());
+    result.json = {{"tolerance", 0.1}, {"ceiling", result.mean}, {"probes", probes}};
+    return result;
+}
+
 void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     renderer::RenderSettings settings;
     parseSize(options.size, settings.width, settings.height);
@@ -348,39 +391,11 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     }
     progress.finish();
 
-    // The measurement ceiling: the first and last frames' decisions, timed again and again.
-    nlohmann::json ceilingJson;
-    double ceilingMean = NAN;
-    std::vector<int> probedFrames;
-    if (renderer && options.noiseProbe > 0 && !rows.empty()) {
-        std::vector<std::size_t> probed = {0};
-        if (rows.size() > 2) probed.push_back(rows.size() / 2);
-        if (rows.size() > 1) probed.push_back(rows.size() - 1);
-        nlohmann::json probes = nlohmann::json::array();
-        double sum = 0.0;
-        for (std::size_t r : probed) {
-            const scenes::Camera& camera = path.frames[std::size_t(rows[r].frame)];
-            std::vector<double> times;
-            for (int k = 0; k < options.noiseProbe; ++k) {
-                times.push_back(renderer->timeRender(rows[r].decision.levels, camera, options.repeats, 1, statistic));
-            }
-            const double ceiling = scheduler::bandCeiling(times, 0.1);
-            std::vector<double> sorted = times;
-            std::sort(sorted.begin(), sorted.end());
-            const double median = spreadOf(times).median;
-            auto ratioAt = [&](double q) { return sorted[std::size_t(q * double(sorted.size() - 1) + 0.5)] / median; };
-            probes.push_back({{"frame", rows[r].frame},
-                              {"measurements", times.size()},
-                              {"median_ms", median},
-                              {"p10_ratio", ratioAt(0.1)},
-                              {"p90_ratio", ratioAt(0.9)},
-                              {"ceiling", ceiling}});
-            sum += ceiling;
-            probedFrames.push_back(rows[r].frame);
-        }
-        ceilingMean = sum / double(probed.size());
-        ceilingJson = {{"tolerance", 0.1}, {"ceiling", ceilingMean}, {"probes", probes}};
-    }
+    // The measurement ceiling: the first, middle and last frames' decisions, timed again and again.
+    const MeasurementCeiling ceiling =
+        renderer && options.noiseProbe > 0
+            ? probeMeasurementCeiling(*renderer, path, rows, options.noiseProbe, options.repeats, statistic)
+            : MeasurementCeiling{};
 
     // Summary.
     std::vector<double> decisionUs, predicted, measured, baselineMeasured, fitness, baselineFitness, error,
@@ -455,7 +470,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
                 {"reachable", sharesJson(budgetShares(rows, budget, baselineOf, reachable))},
                 {"binding", sharesJson(budgetShares(rows, budget, baselineOf, binding))}};
         }
-        if (!ceilingJson.is_null()) summary["measurement_ceiling"] = ceilingJson;
+        if (!ceiling.json.is_null()) summary["measurement_ceiling"] = ceiling.json;
         if (!options.noFitness) {
             summary["fitness"] = spreadJson(spreadOf(fitness));
             if (!options.noBaseline) summary["baseline_fitness"] = spreadJson(spreadOf(baselineFitness));
@@ -486,10 +501,10 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
             std::cout << " (unscheduled: " << 100.0 * b.within10 << "%, " << 100.0 * b.atMost110 << "%)";
         }
         std::cout << "\n";
-        if (!std::isnan(ceilingMean)) {
-            std::cout << "  measurement ceiling " << 100.0 * ceilingMean << "%: one frame timed " << options.noiseProbe
+        if (!std::isnan(ceiling.mean)) {
+            std::cout << "  measurement ceiling " << 100.0 * ceiling.mean << "%: one frame timed " << options.noiseProbe
                       << " times fits a ±10% band at best that often (frames";
-            for (int f : probedFrames) std::cout << ' ' << f;
+            for (int f : ceiling.frames) std::cout << ' ' << f;
             std::cout << ")\n";
         }
         if (!options.noFitness) {
