@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -61,10 +62,12 @@ double median(std::vector<double> values) {
     return values.empty() ? NAN : values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
+// Every digit a double needs to read back the same: the tables are compared with the JSON's
+// values (a fitness cut to 8 digits could read above the best known one).
 std::string number(double value) {
     if (!std::isfinite(value)) return "";
     std::ostringstream out;
-    out << std::setprecision(8) << value;
+    out << std::setprecision(std::numeric_limits<double>::max_digits10) << value;
     return out.str();
 }
 

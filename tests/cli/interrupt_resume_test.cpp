@@ -206,7 +206,7 @@ nlohmann::json benchResult(const fs::path& dir) {
 
 std::string csvNumber(double value) {
     std::ostringstream out;
-    out << std::setprecision(8) << value;  // as bench writes its CSVs
+    out << std::setprecision(std::numeric_limits<double>::max_digits10) << value;  // as bench writes its CSVs
     return out.str();
 }
 
