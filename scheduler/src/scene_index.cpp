@@ -57,69 +57,16 @@ bool Frustum::intersectsBox(glm::vec3 low, glm::vec3 high) const {
     return true;
 }
 
-namespace {
-
-template <typename Distance>
-bool clipSegment(glm::vec4& a, glm::vec4& b, Distance distance) {
-    const float da = distance(a), db = distance(b);
-    if (da < 0.0f && db < 0.0f) return false;
-    if (da < 0.0f) {
-        a = a + (b - a) * (da / (da - db));
-    } else if (db < 0.0f) {
-        b = b + (a - b) * (db / (db - da));
-    }
-    return true;
-}
-
-}  // namespace
-
 ProjectedBox projectBox(const scenes::Bounds& box, const glm::mat4& mvp, int width, int height) {
     assert(width > 0 && height > 0);
     ProjectedBox result;
-    if (box.empty()) return result;
-    glm::vec4 corners[8];
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
-                          (corner & 4) ? box.max.z : box.min.z);
-        corners[corner] = mvp * glm::vec4(p, 1.0f);
-    }
-    // Same outline as timemodel::projectedPixels: the clipped box's vertices are its corners
-    // inside both planes plus the edges' crossings of them.
-    float minX = 1e30f, minY = 1e30f, maxX = -1e30f, maxY = -1e30f;
-    bool any = false;
-    auto nearDistance = [](const glm::vec4& p) { return p.z + p.w; };
-    auto farDistance = [](const glm::vec4& p) { return p.w - p.z; };
-    auto add = [&](const glm::vec4& point) {
-        if (point.w <= 0.0f) return;
-        const float x = point.x / point.w, y = point.y / point.w;
-        minX = std::min(minX, x);
-        maxX = std::max(maxX, x);
-        minY = std::min(minY, y);
-        maxY = std::max(maxY, y);
-        any = true;
-    };
-    // Most boxes lie between the planes: then no edge is clipped, every edge ends at corners
-    // and the outline is the corners' (the same values, a third of the divisions).
-    bool inside = true;
-    for (const glm::vec4& corner : corners)
-        inside = inside && nearDistance(corner) >= 0.0f && farDistance(corner) >= 0.0f;
-    for (int a = 0; a < 8 && inside; ++a) add(corners[a]);
-    for (int a = 0; a < 8 && !inside; ++a) {
-        for (int axis = 1; axis < 8; axis <<= 1) {
-            if (a & axis) continue;
-            glm::vec4 p = corners[a], q = corners[a | axis];
-            if (!clipSegment(p, q, nearDistance) || !clipSegment(p, q, farDistance)) continue;
-            add(p);
-            add(q);
-        }
-    }
-    if (!any) return result;
+    // The time model's outline, so that visibleArea is its projected pixels exactly.
+    const timemodel::ProjectedOutline outline = timemodel::projectedOutline(box, mvp);
+    if (outline.empty) return result;
     const double scale = 0.25 * double(width) * double(height);
-    result.area = double(maxX - minX) * double(maxY - minY) * scale;
-    minX = std::max(minX, -1.0f);
-    minY = std::max(minY, -1.0f);
-    maxX = std::min(maxX, 1.0f);
-    maxY = std::min(maxY, 1.0f);
+    result.area = double(outline.maxX - outline.minX) * double(outline.maxY - outline.minY) * scale;
+    const float minX = std::max(outline.minX, -1.0f), minY = std::max(outline.minY, -1.0f);
+    const float maxX = std::min(outline.maxX, 1.0f), maxY = std::min(outline.maxY, 1.0f);
     if (maxX > minX && maxY > minY) {
         result.visibleArea = double(maxX - minX) * 0.5 * width * double(maxY - minY) * 0.5 * height;
     }

@@ -95,42 +95,54 @@ bool clipSegment(glm::vec4& a, glm::vec4& b, Distance distance) {
 
 }  // namespace
 
-double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& modelViewProjection, int width,
-                       int height) {
-    assert(width > 0 && height > 0);
-    if (objectBounds.empty()) return 0.0;
+ProjectedOutline projectedOutline(const scenes::Bounds& box, const glm::mat4& modelViewProjection) {
+    ProjectedOutline outline;
+    if (box.empty()) return outline;
     glm::vec4 corners[8];
     for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 p((corner & 1) ? objectBounds.max.x : objectBounds.min.x,
-                          (corner & 2) ? objectBounds.max.y : objectBounds.min.y,
-                          (corner & 4) ? objectBounds.max.z : objectBounds.min.z);
+        const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
+                          (corner & 4) ? box.max.z : box.min.z);
         corners[corner] = modelViewProjection * glm::vec4(p, 1.0f);
     }
-    // The clipped box's vertices are its corners inside both planes plus the edges' crossings
-    // of them, so clipping the 12 edges and projecting their ends gives its exact outline.
     float minX = 1e30f, minY = 1e30f, maxX = -1e30f, maxY = -1e30f;
     bool any = false;
-    for (int a = 0; a < 8; ++a) {
+    auto add = [&](const glm::vec4& point) {
+        if (point.w <= 0.0f) return;  // only possible for a degenerate projection
+        const float x = point.x / point.w, y = point.y / point.w;
+        minX = std::min(minX, x);
+        maxX = std::max(maxX, x);
+        minY = std::min(minY, y);
+        maxY = std::max(maxY, y);
+        any = true;
+    };
+    // The clipped box's vertices are its corners inside both planes plus the edges' crossings
+    // of them, so clipping the 12 edges and projecting their ends gives its exact outline.
+    // Most boxes lie between the planes: then no edge is clipped and the outline is the
+    // corners' (the same values, a third of the divisions).
+    bool inside = true;
+    for (const glm::vec4& corner : corners)
+        inside = inside && nearDistance(corner) >= 0.0f && farDistance(corner) >= 0.0f;
+    for (int a = 0; a < 8 && inside; ++a) add(corners[a]);
+    for (int a = 0; a < 8 && !inside; ++a) {
         for (int axis = 1; axis < 8; axis <<= 1) {
             if (a & axis) continue;
             glm::vec4 p = corners[a], q = corners[a | axis];
             if (!clipSegment(p, q, nearDistance) || !clipSegment(p, q, farDistance)) continue;
-            for (const glm::vec4& point : {p, q}) {
-                if (point.w <= 0.0f) continue;  // only possible for a degenerate projection
-                const float x = point.x / point.w, y = point.y / point.w;
-                minX = std::min(minX, x);
-                maxX = std::max(maxX, x);
-                minY = std::min(minY, y);
-                maxY = std::max(maxY, y);
-                any = true;
-            }
+            add(p);
+            add(q);
         }
     }
-    if (!any) return 0.0;
-    minX = std::max(minX, -1.0f);
-    minY = std::max(minY, -1.0f);
-    maxX = std::min(maxX, 1.0f);
-    maxY = std::min(maxY, 1.0f);
+    if (any) outline = {minX, minY, maxX, maxY, false};
+    return outline;
+}
+
+double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& modelViewProjection, int width,
+                       int height) {
+    assert(width > 0 && height > 0);
+    const ProjectedOutline outline = projectedOutline(objectBounds, modelViewProjection);
+    if (outline.empty) return 0.0;
+    const float minX = std::max(outline.minX, -1.0f), minY = std::max(outline.minY, -1.0f);
+    const float maxX = std::min(outline.maxX, 1.0f), maxY = std::min(outline.maxY, 1.0f);
     if (maxX <= minX || maxY <= minY) return 0.0;
     return double(maxX - minX) * 0.5 * width * double(maxY - minY) * 0.5 * height;
 }

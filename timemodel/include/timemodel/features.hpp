@@ -81,6 +81,15 @@ struct FrameFeatures {
 FrameFeatures operator+(FrameFeatures a, const FrameFeatures& b);
 FrameFeatures operator-(FrameFeatures a, const FrameFeatures& b);
 
+// A box's screen outline after clipping to the near and far planes, in normalized device
+// coordinates (not clipped to the viewport); `empty` when nothing of it lies in front of the
+// camera between the planes.
+struct ProjectedOutline {
+    float minX = 0.0f, minY = 0.0f, maxX = 0.0f, maxY = 0.0f;
+    bool empty = true;
+};
+ProjectedOutline projectedOutline(const scenes::Bounds& box, const glm::mat4& modelViewProjection);
+
 // Screen area in pixels of an object-space box seen through `modelViewProjection` (OpenGL
 // clip space): the box's 12 edges are clipped to the near and far planes, the remaining
 // points projected, and their bounding rectangle clipped to the viewport. 0 when the box is
