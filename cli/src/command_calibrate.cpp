@@ -17,6 +17,8 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "cli_common.hpp"
 #include "progress.hpp"
@@ -51,6 +53,12 @@ double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
     const std::size_t n = values.size();
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// A sample's time from its per-pass values on `clock`: the least for wall-min (per-pass least
+// times), the median for wall-median and cpu (per-pass medians).
+double clockStatistic(const std::string& clock, const std::vector<double>& perPass) {
+    return clock == "wall-min" ? *std::min_element(perPass.begin(), perPass.end()) : median(perPass);
 }
 
 double processCpuMs() {
@@ -154,30 +162,26 @@ void runCalibrate(const CalibrateOptions& options) {
         const timemodel::PlannedSample& planned = plan.samples[i];
         const SampleTimings& t = timings[i];
         timemodel::ProfileSample recorded;
-        recorded.wallMinMs = *std::min_element(t.passMin.begin(), t.passMin.end());
-        recorded.wallMedianMs = median(t.passMedian);
-        recorded.cpuMs = median(t.passCpu);
+        recorded.wallMinMs = clockStatistic("wall-min", t.passMin);
+        recorded.wallMedianMs = clockStatistic("wall-median", t.passMedian);
+        recorded.cpuMs = clockStatistic("cpu", t.passCpu);
         const std::vector<double>& perPass = options.clock == "cpu"           ? t.passCpu
                                              : options.clock == "wall-median" ? t.passMedian
                                                                               : t.passMin;
         timemodel::Sample& sample = recorded.sample;
         sample.features = tables[planned.viewpoint].features(planned.combination);
-        sample.measuredMs = options.clock == "cpu"           ? recorded.cpuMs
-                            : options.clock == "wall-median" ? recorded.wallMedianMs
-                                                             : recorded.wallMinMs;
+        sample.measuredMs = clockStatistic(options.clock, perPass);
         sample.viewpoint = planned.viewpoint;
         const auto [low, high] = std::minmax_element(perPass.begin(), perPass.end());
         if (sample.measuredMs > 0.0) spreads.push_back((*high - *low) / median(perPass));
         recorded.heldOut = plan.viewpoints[planned.viewpoint].heldOut;
         // Repeatability: the sample's time from the even passes against the odd ones, by the same
-        // statistic (least for wall-min, median for the others), relative to the time fitted.
+        // statistic, relative to the time fitted.
         if (recorded.heldOut && perPass.size() >= 2 && sample.measuredMs > 0.0) {
             std::vector<double> even, odd;
             for (std::size_t k = 0; k < perPass.size(); ++k) (k % 2 ? odd : even).push_back(perPass[k]);
-            auto statistic = [&](const std::vector<double>& v) {
-                return options.clock == "wall-min" ? *std::min_element(v.begin(), v.end()) : median(v);
-            };
-            halves.push_back(std::abs(statistic(even) - statistic(odd)) / sample.measuredMs);
+            halves.push_back(std::abs(clockStatistic(options.clock, even) - clockStatistic(options.clock, odd)) /
+                             sample.measuredMs);
         }
         (recorded.heldOut ? heldOutSamples : fitSamples).push_back(sample);
         profile.samples.push_back(recorded);

@@ -10,10 +10,12 @@
 #include "occlusion.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/mesh_builder.hpp"
+#include "timemodel/features.hpp"
 
 namespace {
 
 using lodopt::timemodel::detail::depthPassShares;
+constexpr int kCells = lodopt::timemodel::FeatureTable::kDepthPassCells;
 namespace scenes = lodopt::scenes;
 
 glm::mat4 viewProjection(const scenes::Camera& camera, float aspect) {
@@ -21,8 +23,8 @@ glm::mat4 viewProjection(const scenes::Camera& camera, float aspect) {
 }
 
 void expectSameShares(const scenes::Scene& scene, const glm::mat4& vp, float aspect, const std::string& what) {
-    const std::vector<double> spans = depthPassShares(scene, vp, aspect);
-    const std::vector<double> boxes = depthPassShares(scene, vp, aspect, 128, true);
+    const std::vector<double> spans = depthPassShares(scene, vp, aspect, kCells);
+    const std::vector<double> boxes = depthPassShares(scene, vp, aspect, kCells, true);
     ASSERT_EQ(spans.size(), boxes.size());
     for (std::size_t o = 0; o < spans.size(); ++o) EXPECT_EQ(spans[o], boxes[o]) << what << ", object " << o;
 }
@@ -69,7 +71,7 @@ TEST(DepthPass, SpansCountWhatTheBoxCountsOnRandomAndThinTriangles) {
     }
     // And the shares are not trivial: the 400 triangles hide most of each other, and the copy
     // drawn second ties everywhere with the first, so LESS passes none of it.
-    const std::vector<double> shares = depthPassShares(scene, viewProjection(camera, 1.0f), 1.0f);
+    const std::vector<double> shares = depthPassShares(scene, viewProjection(camera, 1.0f), 1.0f, kCells);
     EXPECT_GT(shares[0], 0.05);
     EXPECT_LT(shares[0], 0.5);
     EXPECT_EQ(shares[1], 0.0);

@@ -246,7 +246,8 @@ FrameFeatures computeFrameFeatures(const scenes::Scene& scene, const scenes::Com
     const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
     FrameFeatures out;
     out[Feature::kBoundingBoxes] = double(scene.objects.size());
-    const std::vector<double> shares = detail::depthPassShares(scene, viewProjection, float(width) / float(height));
+    const std::vector<double> shares = detail::depthPassShares(scene, viewProjection, float(width) / float(height),
+                                                               FeatureTable::kDepthPassCells);
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const int level = combination[o];
         if (level == scenes::kNotDrawn) continue;

@@ -17,7 +17,8 @@ namespace lodopt::timemodel::detail {
 // space; `aspect` = width / height of the real viewport. Each triangle is sampled only on the
 // cells of each row it can reach; `everyCell` samples its whole bounding box instead (the
 // slower reference: the same shares).
+// FeatureTable::kDepthPassCells is the time model's `resolution`.
 std::vector<double> depthPassShares(const scenes::Scene& scene, const glm::mat4& viewProjection, float aspect,
-                                    int resolution = 128, bool everyCell = false);
+                                    int resolution, bool everyCell = false);
 
 }  // namespace lodopt::timemodel::detail
