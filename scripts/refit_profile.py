@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Refit a device profile's linear model on feature subsets, offline.
 
-Usage: scripts/refit_profile.py PROFILE.json [PROFILE.json ...]
+Usage: scripts/refit_profile.py [--clock CLOCK] PROFILE.json [PROFILE.json ...]
 
-Reads the samples a `lodopt calibrate` profile stores (features, wall-min times, held-out
-flags, viewpoints) and, for the default feature set and each variant with one feature left
+Reads the samples a `lodopt calibrate` profile stores (features, times on the clock named, by
+default wall-min; held-out flags, viewpoints) and, for the default feature set and each variant with one feature left
 out, fits the `linear` model the way timemodel does (non-negative least squares on relative
 residuals, intercept included) and prints the held-out mean / p90 of |t_act - t_est| / t_act,
 and the same for leave-one-viewpoint-out cross-validation over the fitted viewpoints. An
@@ -45,7 +45,7 @@ def evaluate(profile, columns):
     names = profile['feature_names']
     samples = profile['samples']
     x = np.array([s['features'] for s in samples])
-    t = np.array([s['wall_min_ms'] for s in samples])
+    t = np.array([s[CLOCK_FIELD] for s in samples])
     held = np.array([s['held_out'] for s in samples])
     view = np.array([s['viewpoint'] for s in samples])
     columns = [c for c in columns if c in names]  # profiles older than a feature lack it
@@ -59,10 +59,18 @@ def evaluate(profile, columns):
     return error[held].mean(), np.percentile(error[held], 90), cv.mean(), np.percentile(cv, 90)
 
 
+CLOCK_FIELD = 'wall_min_ms'
+
+
 def main():
-    if len(sys.argv) < 2:
+    global CLOCK_FIELD
+    paths = sys.argv[1:]
+    if len(paths) >= 2 and paths[0] == '--clock':
+        CLOCK_FIELD = paths[1].replace('-', '_') + '_ms'
+        paths = paths[2:]
+    if not paths:
         sys.exit(__doc__)
-    for path in sys.argv[1:]:
+    for path in paths:
         profile = json.load(open(path))
         present = [c for c in DEFAULT if c in profile['feature_names']]
         variants = [('default', present)] + [('without ' + c, [d for d in present if d != c]) for c in present]

@@ -123,7 +123,8 @@ double processCpuMs() {
 }
 
 // One frame's time as the profile's clock defines it (timemodel::TimingSettings): the least
-// wall time of `repeats` draws + glFinish ("wall-min", robust to other tenants' load), their
+// wall time of `repeats` draws + glFinish ("wall-min", robust to other tenants' load; also for
+// "wall-min-median", whose calibration takes the median of such per-pass least times), their
 // median ("wall-median"), or the median process CPU time ("cpu"). One untimed draw first.
 double timeFrame(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
                  int repeats, const std::string& clock) {

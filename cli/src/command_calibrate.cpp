@@ -8,7 +8,7 @@
 // sample and a slow one still finishes. Each pass `warmup` untimed draws then `repeats` timed
 // draws of draw + glFinish (renderer::Renderer::drawAndFinish), each on the steady clock and
 // on the process CPU clock (all of llvmpipe's threads). The fitted time is the statistic that
-// --clock names (timemodel::TimingSettings); all three are kept in the profile.
+// --clock names (timemodel::TimingSettings); all four are kept in the profile.
 #include <time.h>
 
 #include <algorithm>
@@ -55,10 +55,39 @@ double median(std::vector<double> values) {
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-// A sample's time from its per-pass values on `clock`: the least for wall-min (per-pass least
-// times), the median for wall-median and cpu (per-pass medians).
+// One sample's timings, one entry per pass.
+struct SampleTimings {
+    std::vector<double> passMin, passMedian, passCpu;
+};
+
+// The per-pass values `clock` reads: each pass's least wall time for wall-min and
+// wall-min-median, its median wall or CPU time for wall-median and cpu.
+const std::vector<double>& perPassValues(const std::string& clock, const SampleTimings& timings) {
+    if (clock == "cpu") return timings.passCpu;
+    if (clock == "wall-median") return timings.passMedian;
+    return timings.passMin;
+}
+
+// A sample's time from its per-pass values on `clock`: their least for wall-min, their median
+// for the others.
 double clockStatistic(const std::string& clock, const std::vector<double>& perPass) {
     return clock == "wall-min" ? *std::min_element(perPass.begin(), perPass.end()) : median(perPass);
+}
+
+// Repeatability on `clock`: each held-out sample's time from the even passes against the odd
+// ones, by the same statistic, relative to its time from all passes (empty with one pass).
+timemodel::ErrorStats splitHalfRepeatability(const std::string& clock, const std::vector<SampleTimings>& timings,
+                                             const std::vector<timemodel::ProfileSample>& samples) {
+    std::vector<double> halves;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const std::vector<double>& perPass = perPassValues(clock, timings[i]);
+        const double all = timemodel::timeOnClock(samples[i], clock);
+        if (!samples[i].heldOut || perPass.size() < 2 || all <= 0.0) continue;
+        std::vector<double> even, odd;
+        for (std::size_t k = 0; k < perPass.size(); ++k) (k % 2 ? odd : even).push_back(perPass[k]);
+        halves.push_back(std::abs(clockStatistic(clock, even) - clockStatistic(clock, odd)) / all);
+    }
+    return timemodel::summarizeErrors(halves);
 }
 
 double processCpuMs() {
@@ -66,11 +95,6 @@ double processCpuMs() {
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
     return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
 }
-
-// One sample's timings, one entry per pass.
-struct SampleTimings {
-    std::vector<double> passMin, passMedian, passCpu;
-};
 
 void timePass(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
               int repeats, int warmup, SampleTimings& out) {
@@ -157,17 +181,16 @@ void runCalibrate(const CalibrateOptions& options) {
 
     timemodel::DeviceProfile profile;
     std::vector<timemodel::Sample> fitSamples, heldOutSamples;
-    std::vector<double> spreads, halves;
+    std::vector<double> spreads;
     for (std::size_t i = 0; i < count; ++i) {
         const timemodel::PlannedSample& planned = plan.samples[i];
         const SampleTimings& t = timings[i];
         timemodel::ProfileSample recorded;
-        recorded.wallMinMs = clockStatistic("wall-min", t.passMin);
-        recorded.wallMedianMs = clockStatistic("wall-median", t.passMedian);
-        recorded.cpuMs = clockStatistic("cpu", t.passCpu);
-        const std::vector<double>& perPass = options.clock == "cpu"           ? t.passCpu
-                                             : options.clock == "wall-median" ? t.passMedian
-                                                                              : t.passMin;
+        recorded.wallMinMs = clockStatistic("wall-min", perPassValues("wall-min", t));
+        recorded.wallMinMedianMs = clockStatistic("wall-min-median", perPassValues("wall-min-median", t));
+        recorded.wallMedianMs = clockStatistic("wall-median", perPassValues("wall-median", t));
+        recorded.cpuMs = clockStatistic("cpu", perPassValues("cpu", t));
+        const std::vector<double>& perPass = perPassValues(options.clock, t);
         timemodel::Sample& sample = recorded.sample;
         sample.features = tables[planned.viewpoint].features(planned.combination);
         sample.measuredMs = clockStatistic(options.clock, perPass);
@@ -175,14 +198,6 @@ void runCalibrate(const CalibrateOptions& options) {
         const auto [low, high] = std::minmax_element(perPass.begin(), perPass.end());
         if (sample.measuredMs > 0.0) spreads.push_back((*high - *low) / median(perPass));
         recorded.heldOut = plan.viewpoints[planned.viewpoint].heldOut;
-        // Repeatability: the sample's time from the even passes against the odd ones, by the same
-        // statistic, relative to the time fitted.
-        if (recorded.heldOut && perPass.size() >= 2 && sample.measuredMs > 0.0) {
-            std::vector<double> even, odd;
-            for (std::size_t k = 0; k < perPass.size(); ++k) (k % 2 ? odd : even).push_back(perPass[k]);
-            halves.push_back(std::abs(clockStatistic(options.clock, even) - clockStatistic(options.clock, odd)) /
-                             sample.measuredMs);
-        }
         (recorded.heldOut ? heldOutSamples : fitSamples).push_back(sample);
         profile.samples.push_back(recorded);
     }
@@ -200,6 +215,7 @@ void runCalibrate(const CalibrateOptions& options) {
     struct OtherClock {
         std::string clock;
         std::vector<timemodel::ModelResult> models;
+        timemodel::ErrorStats repeatability;
     };
     std::vector<OtherClock> otherClocks;
     for (const std::string& clock : timemodel::timingClockNames()) {
@@ -207,12 +223,11 @@ void runCalibrate(const CalibrateOptions& options) {
         std::vector<timemodel::Sample> fitOther, heldOutOther;
         for (const timemodel::ProfileSample& recorded : profile.samples) {
             timemodel::Sample sample = recorded.sample;
-            sample.measuredMs = clock == "cpu"           ? recorded.cpuMs
-                                : clock == "wall-median" ? recorded.wallMedianMs
-                                                         : recorded.wallMinMs;
+            sample.measuredMs = timemodel::timeOnClock(recorded, clock);
             (recorded.heldOut ? heldOutOther : fitOther).push_back(sample);
         }
-        otherClocks.push_back({clock, timemodel::fitAllModels(fitOther, heldOutOther)});
+        otherClocks.push_back({clock, timemodel::fitAllModels(fitOther, heldOutOther),
+                               splitHalfRepeatability(clock, timings, profile.samples)});
     }
 
     profile.created = timemodel::currentDateUtc();
@@ -228,7 +243,7 @@ void runCalibrate(const CalibrateOptions& options) {
     profile.heldOutViewpoints = static_cast<int>(std::count_if(
         plan.viewpoints.begin(), plan.viewpoints.end(), [](const timemodel::Viewpoint& v) { return v.heldOut; }));
     const timemodel::ErrorStats spread = timemodel::summarizeErrors(spreads);
-    const timemodel::ErrorStats repeatability = timemodel::summarizeErrors(halves);
+    const timemodel::ErrorStats repeatability = splitHalfRepeatability(options.clock, timings, profile.samples);
     profile.timing.clock = options.clock;
     profile.timing.rounds = passes;
     profile.timing.repeatsPerRound = options.repeats;
@@ -263,7 +278,9 @@ void runCalibrate(const CalibrateOptions& options) {
                                    {"held_out_errors", errorsJson(r.heldOutErrors)},
                                    {"fit_errors", errorsJson(r.fitErrors)}});
             }
-            otherJson[other.clock] = entries;
+            otherJson[other.clock] = {{"models", entries},
+                                      {"split_half_median", other.repeatability.median},
+                                      {"split_half_p90", other.repeatability.p90}};
         }
         printJson({{"out", options.out},
                    {"scene", scene.name},
@@ -306,7 +323,9 @@ void runCalibrate(const CalibrateOptions& options) {
         for (const std::string& note : r.fit.notes) std::cout << "  note (" << r.name << "): " << note << "\n";
     }
     for (const OtherClock& other : otherClocks) {
-        std::cout << "same draws, clock " << other.clock << ":";
+        std::snprintf(line, sizeof line, "same draws, clock %s (repeatability %.1f%% / %.1f%%):", other.clock.c_str(),
+                      100.0 * other.repeatability.median, 100.0 * other.repeatability.p90);
+        std::cout << line;
         for (const timemodel::ModelResult& r : other.models) {
             if (!r.fitted) continue;
             std::snprintf(line, sizeof line, "  %s mean %.1f%% p90 %.1f%%", r.name.c_str(),
@@ -356,7 +375,8 @@ void addCalibrateCommand(CLI::App& app) {
         ->check(CLI::Range(0, 100));
     command
         ->add_option("--clock", options->clock,
-                     "Fitted time: wall-min (least wall time), wall-median, or cpu (process CPU time)")
+                     "Fitted time: wall-min (least wall time), wall-min-median (median of each pass's least), "
+                     "wall-median, or cpu (process CPU time)")
         ->capture_default_str()
         ->check(CLI::IsMember(timemodel::timingClockNames()));
     command->add_option("--out", options->out, "Device profile to write (JSON)")->capture_default_str();

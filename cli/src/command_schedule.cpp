@@ -57,8 +57,8 @@ struct ScheduleOptions {
     double beta = 0.3;
     int frames = 0;
     int stride = 1;
-    // A frame's measured time: the least of 5 timed draws, the statistic the calibration's
-    // default wall-min clock fits. The median of 3 moved by more than 10% between repeated
+    // A frame's measured time: the least of 5 timed draws, what the calibration's default clock
+    // (wall-min-median) fits. The median of 3 moved by more than 10% between repeated
     // measurements of one frame a third of the time on an idle machine (docs/scheduler.md).
     int repeats = 5;
     std::string frameTime = "min";

@@ -84,7 +84,23 @@ TEST_F(TimeModelCli, CalibrateFitsEveryModelAndWritesAProfile) {
     EXPECT_EQ(profile.samples.size(), 24u);
     EXPECT_NE(profile.glRenderer.find("llvmpipe"), std::string::npos) << profile.glRenderer;
     EXPECT_FALSE(profile.machine.cpuModel.empty());
-    for (const auto& s : profile.samples) EXPECT_GT(s.sample.measuredMs, 0.0);
+    for (const auto& s : profile.samples) {
+        EXPECT_GT(s.sample.measuredMs, 0.0);
+        EXPECT_EQ(s.sample.measuredMs, s.wallMinMedianMs);  // the default clock
+        // The median of the passes' least times lies between their least and their greatest.
+        EXPECT_GE(s.wallMinMedianMs, s.wallMinMs);
+        EXPECT_GT(s.wallMedianMs, 0.0);
+    }
+    // The same draws refitted on every other clock.
+    for (const char* clock : {"wall-min", "wall-median", "cpu"}) {
+        ASSERT_TRUE(report["other_clocks"].contains(clock)) << clock;
+        EXPECT_EQ(report["other_clocks"][clock]["models"].size(), 3u) << clock;
+        EXPECT_GE(report["other_clocks"][clock]["split_half_p90"].get<double>(),
+                  report["other_clocks"][clock]["split_half_median"].get<double>())
+            << clock;
+    }
+    EXPECT_FALSE(report["other_clocks"].contains("wall-min-median"));
+    EXPECT_GT(report["other_clocks"]["wall-min"]["split_half_median"].get<double>(), 0.0);
     // Two passes: each held-out sample timed twice, the two compared (repeatability).
     EXPECT_EQ(profile.timing.rounds, 2);
     const double halfMedian = report["split_half_median"].get<double>();
@@ -92,6 +108,25 @@ TEST_F(TimeModelCli, CalibrateFitsEveryModelAndWritesAProfile) {
     EXPECT_GE(report["split_half_p90"].get<double>(), halfMedian);
     EXPECT_DOUBLE_EQ(profile.timing.splitHalfMedian, halfMedian);
     EXPECT_DOUBLE_EQ(profile.timing.splitHalfP90, report["split_half_p90"].get<double>());
+}
+
+TEST_F(TimeModelCli, CalibrateFitsTheClockItIsGiven) {
+    const std::string out = (sDir / "median_of_least.json").string();
+    const CommandResult result =
+        run("calibrate --scene harbor --samples 16 --jitter 1 --rounds 3 --max-rounds 3 --repeats 2 --warmup 0 "
+            "--size 64x48 --seed 5 --clock wall-min --out " +
+            out + " --json");
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    const nlohmann::json report = nlohmann::json::parse(result.output);
+    EXPECT_EQ(report["clock"], "wall-min");
+    EXPECT_TRUE(report["other_clocks"].contains("wall-min-median"));
+    const lodopt::timemodel::DeviceProfile profile = lodopt::timemodel::loadProfile(out);
+    EXPECT_EQ(profile.timing.clock, "wall-min");
+    EXPECT_EQ(profile.timing.rounds, 3);
+    for (const auto& s : profile.samples) {
+        EXPECT_EQ(s.sample.measuredMs, s.wallMinMs);
+        EXPECT_GE(s.wallMinMedianMs, s.wallMinMs);
+    }
 }
 
 TEST_F(TimeModelCli, EstimateFromTheProfilePredictsEveryModel) {

@@ -44,8 +44,10 @@ timemodel::DeviceProfile sampleProfile() {
     profile.heldOutViewpoints = 1;
     profile.timing = {"cpu", 3, 2, 1, 0.05, 0.1, 12.5};
     profile.models = timemodel::fitAllModels(fit, heldOut);
-    for (const auto& s : fit) profile.samples.push_back({s, false, s.measuredMs, 1.1 * s.measuredMs, 0.0});
-    for (const auto& s : heldOut) profile.samples.push_back({s, true, s.measuredMs, 1.1 * s.measuredMs, 0.0});
+    for (const auto& s : fit)
+        profile.samples.push_back({s, false, s.measuredMs, 1.1 * s.measuredMs, 0.0, 1.05 * s.measuredMs});
+    for (const auto& s : heldOut)
+        profile.samples.push_back({s, true, s.measuredMs, 1.1 * s.measuredMs, 0.0, 1.05 * s.measuredMs});
     return profile;
 }
 
@@ -89,6 +91,14 @@ TEST(Profile, RoundTripsThroughJsonAndAFile) {
     EXPECT_DOUBLE_EQ(loaded.samples[5].sample.measuredMs, profile.samples[5].sample.measuredMs);
     EXPECT_DOUBLE_EQ(loaded.samples[5].wallMedianMs, profile.samples[5].wallMedianMs);
     EXPECT_EQ(loaded.samples[5].cpuMs, 0.0);  // not recorded
+    EXPECT_DOUBLE_EQ(loaded.samples[5].wallMinMedianMs, profile.samples[5].wallMinMedianMs);
+    for (const std::string& clock : timemodel::timingClockNames()) {
+        EXPECT_EQ(timemodel::timeOnClock(loaded.samples[5], clock), timemodel::timeOnClock(profile.samples[5], clock))
+            << clock;
+    }
+    EXPECT_DOUBLE_EQ(timemodel::timeOnClock(loaded.samples[5], "wall-min-median"), loaded.samples[5].wallMinMedianMs);
+    EXPECT_DOUBLE_EQ(timemodel::timeOnClock(loaded.samples[5], "wall-median"), loaded.samples[5].wallMedianMs);
+    EXPECT_EQ(timemodel::timeOnClock(loaded.samples[5], "no-such-clock"), 0.0);
     // The model built from the file predicts what the fitted one did.
     const auto model = timemodel::modelFromProfile(loaded);
     EXPECT_EQ(model->name(), "linear");

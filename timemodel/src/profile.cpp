@@ -79,7 +79,15 @@ private:
 }  // namespace
 
 std::vector<std::string> timingClockNames() {
-    return {"wall-min", "wall-median", "cpu"};
+    return {"wall-min", "wall-min-median", "wall-median", "cpu"};
+}
+
+double timeOnClock(const ProfileSample& sample, const std::string& clock) {
+    if (clock == "wall-min") return sample.wallMinMs;
+    if (clock == "wall-min-median") return sample.wallMinMedianMs;
+    if (clock == "wall-median") return sample.wallMedianMs;
+    if (clock == "cpu") return sample.cpuMs;
+    return 0.0;
 }
 
 MachineDescription describeMachine() {
@@ -143,6 +151,7 @@ std::string profileToJson(const DeviceProfile& profile) {
         if (s.wallMinMs > 0.0) entry["wall_min_ms"] = s.wallMinMs;
         if (s.wallMedianMs > 0.0) entry["wall_median_ms"] = s.wallMedianMs;
         if (s.cpuMs > 0.0) entry["cpu_ms"] = s.cpuMs;
+        if (s.wallMinMedianMs > 0.0) entry["wall_min_median_ms"] = s.wallMinMedianMs;
         entry["features"] = s.sample.features.values;
         samples.push_back(entry);
     }
@@ -332,6 +341,9 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
             if (samples[i].contains("wall_min_ms")) s.wallMinMs = read.number(samples[i], "wall_min_ms", at);
             if (samples[i].contains("wall_median_ms")) s.wallMedianMs = read.number(samples[i], "wall_median_ms", at);
             if (samples[i].contains("cpu_ms")) s.cpuMs = read.number(samples[i], "cpu_ms", at);
+            if (samples[i].contains("wall_min_median_ms")) {
+                s.wallMinMedianMs = read.number(samples[i], "wall_min_median_ms", at);
+            }
             const Json& features = read.field(samples[i], "features", at);
             if (!features.is_array() || features.size() != fileFeatures.size()) {
                 read.fail(at + ".features",

@@ -104,8 +104,8 @@ public:
     // Draws without reading pixels back, then glFinish: for timing only.
     void drawAndFinish(const scenes::Combination& combination, const scenes::Camera& camera);
     // Wall time in ms of drawAndFinish over `repeats` after `warmup` unmeasured runs (steady
-    // clock around the draw + glFinish): their median, or their least (what the calibration's
-    // default wall-min clock fits; others' load only ever adds time). GL timer queries miss
+    // clock around the draw + glFinish): their median, or their least (what each pass of the
+    // calibration's wall-min clocks takes; others' load only ever adds time). GL timer queries miss
     // llvmpipe's rasterization, so they are not used.
     enum class Statistic { Median, Min };
     double timeRender(const scenes::Combination& combination, const scenes::Camera& camera, int repeats = 5,
