@@ -1,6 +1,7 @@
 // The fast (layers + incremental metrics) and full (render + metrics) evaluation paths.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <thread>
 
@@ -223,7 +224,44 @@ std::vector<std::int32_t> pixelParts(const ViewSetup& setup, const detail::Visib
     return parts;
 }
 
+// Pixels where `a` and `b` differ: one covers and the other not, or both cover in other colors.
+std::uint64_t differingPixels(const renderer::Layer& a, const renderer::Layer& b) {
+    const renderer::PixelRect& ra = a.rect;
+    const renderer::PixelRect& rb = b.rect;
+    // The covered pixel (x, y) of `layer`, its color in `color`; false when not covered.
+    auto covered = [](const renderer::Layer& layer, int x, int y, std::uint32_t& color) {
+        const renderer::PixelRect& r = layer.rect;
+        if (x < r.x0 || x >= r.x1 || y < r.y0 || y >= r.y1) return false;
+        const std::size_t at = std::size_t(y - r.y0) * r.width() + std::size_t(x - r.x0);
+        if (!(layer.depth[at] < 1.0f)) return false;
+        std::memcpy(&color, &layer.rgba[at * 4], 4);
+        return true;
+    };
+    std::uint64_t count = 0;
+    for (int y = std::min(ra.y0, rb.y0); y < std::max(ra.y1, rb.y1); ++y) {
+        for (int x = std::min(ra.x0, rb.x0); x < std::max(ra.x1, rb.x1); ++x) {
+            std::uint32_t colorA = 0, colorB = 0;
+            const bool inA = covered(a, x, y, colorA), inB = covered(b, x, y, colorB);
+            count += inA != inB || (inA && colorA != colorB);
+        }
+    }
+    return count;
+}
+
 }  // namespace
+
+double meanLevelStepPixels(const ViewSetup& setup) {
+    double pixels = 0.0;
+    int steps = 0;
+    for (int object : setup.variableObjects()) {
+        const std::vector<int>& levels = setup.objects()[object].optionLevels;
+        for (std::size_t j = 0; j + 1 < levels.size(); ++j) {
+            pixels += double(differingPixels(setup.layer(object, levels[j]), setup.layer(object, levels[j + 1])));
+            ++steps;
+        }
+    }
+    return steps > 0 ? pixels / steps : 0.0;
+}
 
 LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads,
                                DirtyRegions regions, int states, PartCaching caching, std::size_t groupCacheBytes)
@@ -242,8 +280,8 @@ LayerEvaluator::LayerEvaluator(const ViewSetup& setup, const metrics::MetricPara
         visibility.emplace(setup);
         mScorer = std::make_unique<metrics::RegionScorer>(viewOf(setup.reference()), parameters);
         mGroups = std::make_unique<detail::WindowGroups>(setup, *visibility, *mScorer, groupCacheBytes);
-        const std::size_t objects = std::max<std::size_t>(setup.variableObjects().size(), 1);
-        if (automatic && mGroups->size() > std::size_t(kMaxGroupsPerObject) * objects) {
+        const double objects = double(std::max<std::size_t>(setup.variableObjects().size(), 1));
+        if (automatic && meanLevelStepPixels(setup) < kMinStepPixelsPerGroup * double(mGroups->size()) / objects) {
             mGroups.reset();
             mScorer.reset();
             caching = PartCaching::On;

@@ -198,8 +198,9 @@ TEST(FastPathExactness, WindowGroupsMatchFromScratchScoresToTheBit) {
             EXPECT_LT(tight.groupCacheStats().entries, stats.entries) << camera.name;
             EXPECT_LE(tight.groupCacheStats().bytes, tightBytes) << camera.name;
             EXPECT_EQ(owned.groupCacheStats().groups, 0) << camera.name;
-            // Auto: groups up to kMaxGroupsPerObject per searched object, owned windows beyond.
-            const bool fewGroups = stats.groups <= LayerEvaluator::kMaxGroupsPerObject * int(counts.size());
+            // Auto: groups where a level step changes enough pixels per group of each object.
+            const bool fewGroups = evaluation::meanLevelStepPixels(setup) >=
+                                   LayerEvaluator::kMinStepPixelsPerGroup * stats.groups / double(counts.size());
             EXPECT_EQ(automatic.groupCacheStats().groups > 0, fewGroups) << camera.name;
             EXPECT_EQ(automatic.partCacheStats().parts > 0, !fewGroups) << camera.name;
             if (camera.name == "dense") {

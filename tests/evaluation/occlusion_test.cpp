@@ -186,3 +186,34 @@ TEST(Occlusion, CityStreetScoresMatchFromScratchWithEveryCaching) {
         EXPECT_GT(grouped.groupCacheStats().hits, 0u) << viewName;
     }
 }
+
+TEST(AutoCaching, LevelStepPixelsCountWhatALevelChangeTouches) {
+    // Each panel's coarser level is the same flat face a little smaller and centred on the
+    // same point: its pixels are a subset of the finer level's, in the same color, so a level
+    // step touches exactly the pixels the finer level covers and the coarser does not.
+    scenes::Scene scene = panelScene();
+    renderer::RenderSettings settings;
+    settings.width = settings.height = 96;
+    renderer::Renderer renderer(scene, settings);
+    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    ASSERT_EQ(setup.levelCounts(), (std::vector<int>{2, 2}));
+    double expected = 0.0;
+    for (int object : {0, 1}) {
+        const renderer::Layer& fine = setup.layer(object, 0);
+        const renderer::Layer& coarse = setup.layer(object, 1);
+        ASSERT_GT(fine.coveredPixels, coarse.coveredPixels);
+        expected += double(fine.coveredPixels - coarse.coveredPixels) / 2.0;
+    }
+    EXPECT_GT(expected, 0.0);
+    EXPECT_DOUBLE_EQ(evaluation::meanLevelStepPixels(setup), expected);
+
+    // The automatic choice follows the rule stated with kMinStepPixelsPerGroup.
+    const metrics::MetricParameters parameters = evaluation::searchParameters({});
+    evaluation::LayerEvaluator grouped(setup, parameters, 1, evaluation::DirtyRegions::ChangedPixels,
+                                       evaluation::LayerEvaluator::kDefaultStates, evaluation::PartCaching::Groups);
+    evaluation::LayerEvaluator automatic(setup, parameters);
+    const double groupsPerObject = grouped.groupCacheStats().groups / 2.0;
+    const bool groups = expected >= evaluation::LayerEvaluator::kMinStepPixelsPerGroup * groupsPerObject;
+    EXPECT_EQ(automatic.groupCacheStats().groups > 0, groups);
+    EXPECT_EQ(automatic.partCacheStats().parts > 0, !groups);
+}

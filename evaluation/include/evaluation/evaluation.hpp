@@ -133,12 +133,14 @@ enum class DirtyRegions {
 // spread over up to `threads` threads, each state used by one thread at a time.
 //
 // How the fast path scores a candidate (ChangedPixels only; docs/optimizer.md):
-// - Auto (the default): Groups where the view has at most kMaxGroupsPerObject groups per
-//   searched object, else On. Many groups per object (many small objects whose seams meet in
-//   many combinations) mean few kept scores are found again early in a search, and a new
-//   group score is computed over the whole group, where On computes only around the changed
-//   pixels (forest `overview`, city `avenue`, `aerial`, `skyline`: slower with groups early
-//   in a search, docs/optimizer.md).
+// - Auto (the default): Groups where a level step of a searched object changes, on average,
+//   at least kMinStepPixelsPerGroup pixels per group of the view's groups per searched object
+//   (meanLevelStepPixels(setup) >= kMinStepPixelsPerGroup * groups / searched objects), else
+//   On. Each group a move touches costs a lookup, or on a miss a score over the whole group,
+//   while On works only around the pixels that changed; so groups pay where moves change many
+//   pixels and the view has few groups per object (forest `dense`, `sparse`, `edge`, city
+//   `street`, the harbor), and On where objects are small and their seams meet in many
+//   combinations (forest `overview`, city `avenue`, `aerial`, `skyline`; docs/optimizer.md).
 // - Groups: every metric window depends on the levels of the searched objects whose layers
 //   can show at its pixels (cover them, and are not behind an object that covers them at
 //   every level it can take: detail::VisibilityBounds); windows with the same objects form a
@@ -156,6 +158,12 @@ enum class DirtyRegions {
 // - Off: every changed pixel's windows are computed per candidate.
 // Scores are the same, bit for bit, whichever is used.
 enum class PartCaching { Auto, Groups, On, Off };
+
+// The mean, over the searched objects and each pair of consecutive option levels of theirs, of
+// the pixels whose color or coverage differs between the two levels' layers: how many pixels a
+// one-step level change of one object touches (PartCaching::Auto's measure of a move's size).
+// 0 when no object has two options.
+double meanLevelStepPixels(const ViewSetup& setup);
 
 // The window groups' figures (zeros without them).
 struct GroupCacheStats {
@@ -178,8 +186,9 @@ public:
     // Memory the window groups keep scores in, at most: beyond it new scores are still
     // computed and used, but not kept.
     static constexpr std::size_t kGroupCacheBytes = std::size_t(256) << 20;
-    // PartCaching::Auto's limit (measured on the forest's and city's views, docs/optimizer.md).
-    static constexpr int kMaxGroupsPerObject = 11;
+    // PartCaching::Auto's threshold (measured on the forest's and city's views at 512²: 298 or
+    // more where groups were faster, 127 or less where owned windows were; docs/optimizer.md).
+    static constexpr double kMinStepPixelsPerGroup = 200.0;
     LayerEvaluator(const ViewSetup& setup, const metrics::MetricParameters& parameters, int threads = 1,
                    DirtyRegions regions = DirtyRegions::ChangedPixels, int states = kDefaultStates,
                    PartCaching caching = PartCaching::Auto, std::size_t groupCacheBytes = kGroupCacheBytes);
