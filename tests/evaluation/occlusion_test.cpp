@@ -38,6 +38,13 @@ scenes::Scene panelScene() {
     return scene;
 }
 
+// The panel scene's one view prepared at 96 x 96.
+struct PanelView {
+    scenes::Scene scene = panelScene();
+    renderer::Renderer renderer{scene, renderer::RenderSettings{.width = 96, .height = 96}};
+    evaluation::ViewSetup setup{scene, scene.views[0], renderer};
+};
+
 // Per pixel: 1 where some option level of scene object `object` covers it, 2 where all do.
 std::vector<int> coverage(const evaluation::ViewSetup& setup, int object) {
     const int width = setup.width(), height = setup.height();
@@ -91,11 +98,8 @@ struct Evaluators {
 }  // namespace
 
 TEST(Occlusion, WindowsBehindWhatAlwaysCoversThemDependOnTheFrontObjectAlone) {
-    scenes::Scene scene = panelScene();
-    renderer::RenderSettings settings;
-    settings.width = settings.height = 96;
-    renderer::Renderer renderer(scene, settings);
-    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    PanelView panels;
+    const evaluation::ViewSetup& setup = panels.setup;
     ASSERT_EQ(setup.variableObjects(), (std::vector<int>{0, 1}));
     ASSERT_EQ(setup.levelCounts(), (std::vector<int>{2, 2}));
     const metrics::MetricParameters parameters = evaluation::searchParameters({});
@@ -191,11 +195,8 @@ TEST(AutoCaching, LevelStepPixelsCountWhatALevelChangeTouches) {
     // Each panel's coarser level is the same flat face a little smaller and centred on the
     // same point: its pixels are a subset of the finer level's, in the same color, so a level
     // step touches exactly the pixels the finer level covers and the coarser does not.
-    scenes::Scene scene = panelScene();
-    renderer::RenderSettings settings;
-    settings.width = settings.height = 96;
-    renderer::Renderer renderer(scene, settings);
-    evaluation::ViewSetup setup(scene, scene.views[0], renderer);
+    PanelView panels;
+    const evaluation::ViewSetup& setup = panels.setup;
     ASSERT_EQ(setup.levelCounts(), (std::vector<int>{2, 2}));
     double expected = 0.0;
     for (int object : {0, 1}) {
