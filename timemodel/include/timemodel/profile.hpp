@@ -46,8 +46,8 @@ MachineDescription describeMachine();
 //   "wall-median"  median over the passes of each pass's median (what `render --time` does);
 //   "cpu"          median process CPU time (all of llvmpipe's threads) of draw + glFinish:
 //                  the work, nearly immune to other tenants, but not wall time.
-// The default since 2026-12-03: on the Intel machine it met the error goal in 11 of 16 paired
-// calibrations against 8 of 16 for wall-min (docs/timemodel.md "A steadier statistic").
+// The default since 2026-12-03: on the Intel machine it met the error goal in 14 of 22 paired
+// calibrations against 10 of 22 for wall-min (docs/timemodel.md "A steadier statistic").
 inline constexpr const char* kDefaultTimingClock = "wall-min-median";
 std::vector<std::string> timingClockNames();
 
