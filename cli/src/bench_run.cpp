@@ -1,7 +1,5 @@
 #include "bench_run.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,6 +11,7 @@
 #include "cli_common.hpp"
 #include "metrics/incremental_evaluator.hpp"
 #include "metrics/metrics.hpp"
+#include "time_profile.hpp"
 #include "timemodel/profile.hpp"
 
 namespace lodopt::cli {
@@ -114,32 +113,6 @@ double referenceInformationEntropy(const renderer::Frame& frame) {
         }
     }
     return entropyOf(histogram);
-}
-
-double processCpuMs() {
-    timespec now{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-    return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
-}
-
-// One frame's time as the profile's clock defines it (timemodel::TimingSettings): the least
-// wall time of `repeats` draws + glFinish ("wall-min", robust to other tenants' load; also for
-// "wall-min-median", whose calibration takes the median of such per-pass least times), their
-// median ("wall-median"), or the median process CPU time ("cpu"). One untimed draw first.
-double timeFrame(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
-                 int repeats, const std::string& clock) {
-    renderer.drawAndFinish(combination, camera);
-    std::vector<double> wall, cpu;
-    for (int i = 0; i < repeats; ++i) {
-        const double cpuStart = processCpuMs();
-        const auto start = Clock::now();
-        renderer.drawAndFinish(combination, camera);
-        wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-        cpu.push_back(processCpuMs() - cpuStart);
-    }
-    if (clock == "cpu") return median(cpu);
-    if (clock == "wall-median") return median(wall);
-    return *std::min_element(wall.begin(), wall.end());
 }
 
 optimizer::Combination randomCombination(const std::vector<int>& levelCounts, std::mt19937_64& rng) {
@@ -434,7 +407,8 @@ std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewC
         for (std::size_t o = 0; o < combination.size(); ++o) {
             combination[o] = std::uniform_int_distribution<int>(0, int(scene.objects[o].levels.size()) - 1)(rng);
         }
-        measured.push_back(timeFrame(*prepared.renderer, combination, camera, repeats, profile.timing.clock));
+        // One batch as the profile's clock takes it (one untimed draw first).
+        measured.push_back(batchTime(timeDraws(*prepared.renderer, combination, camera, repeats, 1), profile.timing.clock));
         combinations.push_back(std::move(combination));
     }
     for (const timemodel::ModelResult& result : profile.models) {

@@ -9,8 +9,6 @@
 // draws of draw + glFinish (renderer::Renderer::drawAndFinish), each on the steady clock and
 // on the process CPU clock (all of llvmpipe's threads). The fitted time is the statistic that
 // --clock names (timemodel::TimingSettings); all four are kept in the profile.
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,6 +22,7 @@
 #include "progress.hpp"
 #include "renderer/renderer.hpp"
 #include "scenes/builtin.hpp"
+#include "time_profile.hpp"
 #include "timemodel/calibration.hpp"
 #include "timemodel/features.hpp"
 #include "timemodel/profile.hpp"
@@ -90,27 +89,12 @@ timemodel::ErrorStats splitHalfRepeatability(const std::string& clock, const std
     return timemodel::summarizeErrors(halves);
 }
 
-double processCpuMs() {
-    timespec now{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-    return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
-}
-
 void timePass(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
               int repeats, int warmup, SampleTimings& out) {
-    for (int i = 0; i < warmup; ++i) renderer.drawAndFinish(combination, camera);
-    std::vector<double> wall, cpu;
-    for (int i = 0; i < repeats; ++i) {
-        const double cpuStart = processCpuMs();
-        const auto wallStart = std::chrono::steady_clock::now();
-        renderer.drawAndFinish(combination, camera);
-        const auto wallStop = std::chrono::steady_clock::now();
-        cpu.push_back(processCpuMs() - cpuStart);
-        wall.push_back(std::chrono::duration<double, std::milli>(wallStop - wallStart).count());
-    }
-    out.passMin.push_back(*std::min_element(wall.begin(), wall.end()));
-    out.passMedian.push_back(median(wall));
-    out.passCpu.push_back(median(cpu));
+    const DrawTimes times = timeDraws(renderer, combination, camera, repeats, warmup);
+    out.passMin.push_back(times.wallMin);
+    out.passMedian.push_back(times.wallMedian);
+    out.passCpu.push_back(times.cpuMedian);
 }
 
 std::vector<int> parseViews(const scenes::Scene& scene, const std::string& text) {

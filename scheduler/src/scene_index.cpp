@@ -65,11 +65,7 @@ ProjectedBox projectBox(const scenes::Bounds& box, const glm::mat4& mvp, int wid
     if (outline.empty) return result;
     const double scale = 0.25 * double(width) * double(height);
     result.area = double(outline.maxX - outline.minX) * double(outline.maxY - outline.minY) * scale;
-    const float minX = std::max(outline.minX, -1.0f), minY = std::max(outline.minY, -1.0f);
-    const float maxX = std::min(outline.maxX, 1.0f), maxY = std::min(outline.maxY, 1.0f);
-    if (maxX > minX && maxY > minY) {
-        result.visibleArea = double(maxX - minX) * 0.5 * width * double(maxY - minY) * 0.5 * height;
-    }
+    result.visibleArea = timemodel::viewportPixels(outline, width, height);
     return result;
 }
 

@@ -138,8 +138,11 @@ ProjectedOutline projectedOutline(const scenes::Bounds& box, const glm::mat4& mo
 
 double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& modelViewProjection, int width,
                        int height) {
+    return viewportPixels(projectedOutline(objectBounds, modelViewProjection), width, height);
+}
+
+double viewportPixels(const ProjectedOutline& outline, int width, int height) {
     assert(width > 0 && height > 0);
-    const ProjectedOutline outline = projectedOutline(objectBounds, modelViewProjection);
     if (outline.empty) return 0.0;
     const float minX = std::max(outline.minX, -1.0f), minY = std::max(outline.minY, -1.0f);
     const float maxX = std::min(outline.maxX, 1.0f), maxY = std::min(outline.maxY, 1.0f);

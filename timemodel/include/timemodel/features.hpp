@@ -89,6 +89,9 @@ struct ProjectedOutline {
     bool empty = true;
 };
 ProjectedOutline projectedOutline(const scenes::Bounds& box, const glm::mat4& modelViewProjection);
+// The pixels of `outline` inside the viewport of a `width` x `height` render (> 0 each); 0
+// when it is empty or lies outside.
+double viewportPixels(const ProjectedOutline& outline, int width, int height);
 
 // Screen area in pixels of an object-space box seen through `modelViewProjection` (OpenGL
 // clip space): the box's 12 edges are clipped to the near and far planes, the remaining
