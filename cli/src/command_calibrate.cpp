@@ -38,9 +38,9 @@ struct CalibrateOptions {
     std::uint32_t sceneSeed = 1;
     std::string size = "512x512";
     int jitter = 3;
-    int rounds = 3;
-    int maxRounds = 15;
-    double timeBudget = 80.0;
+    int rounds = 6;
+    int maxRounds = 25;
+    double timeBudget = 110.0;
     int repeats = 3;
     int warmup = 1;
     std::string clock = timemodel::kDefaultTimingClock;
