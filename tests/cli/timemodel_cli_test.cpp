@@ -129,6 +129,23 @@ TEST_F(TimeModelCli, CalibrateFitsTheClockItIsGiven) {
     }
 }
 
+TEST_F(TimeModelCli, CalibrateMakesAtLeastRoundsPassesAndMoreWithinTheBudget) {
+    // The pass rule the defaults rest on (--rounds 6 --max-rounds 25 --time-budget 110): at least
+    // --rounds passes whatever the budget, more up to --max-rounds while the budget allows.
+    const auto passes = [](const std::string& options, const std::string& name) {
+        const std::string out = (sDir / name).string();
+        const CommandResult result =
+            run("calibrate --scene harbor --samples 8 --jitter 1 --repeats 1 --warmup 0 "
+                "--size 32x24 --seed 7 --quiet " +
+                options + " --out " + out);
+        EXPECT_EQ(result.exitCode, 0) << options;
+        return result.exitCode == 0 ? lodopt::timemodel::loadProfile(out).timing.rounds : -1;
+    };
+    EXPECT_EQ(passes("--rounds 3 --max-rounds 9 --time-budget 0", "no_budget.json"), 3);
+    EXPECT_EQ(passes("--rounds 2 --max-rounds 5 --time-budget 600", "budget.json"), 5);
+    EXPECT_EQ(passes("--rounds 4 --max-rounds 2 --time-budget 600", "rounds_over_max.json"), 4);
+}
+
 TEST_F(TimeModelCli, EstimateFromTheProfilePredictsEveryModel) {
     ASSERT_EQ(sCalibration.exitCode, 0);
     const nlohmann::json fine = estimate("--profile " + sProfile + " --scene harbor --view 1 --levels 0,0,0");
