@@ -395,6 +395,11 @@ std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewC
         if (!model.fitted) continue;
         const timemodel::ErrorStats& e = model.heldOutErrors;
         rows.push_back({model.name, "calibration held-out", e.count, e.mean, e.median, e.p90, e.max});
+        const timemodel::ErrorStats& r = model.rotatedErrors;
+        if (r.count > 0) {
+            rows.push_back(
+                {model.name, "calibration, every viewpoint held out", r.count, r.mean, r.median, r.p90, r.max});
+        }
     }
     // Frames of this view: every object at a uniformly drawn level, timed now.
     std::mt19937_64 rng(seed);
@@ -408,7 +413,8 @@ std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewC
             combination[o] = std::uniform_int_distribution<int>(0, int(scene.objects[o].levels.size()) - 1)(rng);
         }
         // One batch as the profile's clock takes it (one untimed draw first).
-        measured.push_back(batchTime(timeDraws(*prepared.renderer, combination, camera, repeats, 1), profile.timing.clock));
+        measured.push_back(
+            batchTime(timeDraws(*prepared.renderer, combination, camera, repeats, 1), profile.timing.clock));
         combinations.push_back(std::move(combination));
     }
     for (const timemodel::ModelResult& result : profile.models) {

@@ -97,7 +97,7 @@ std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContex
 
 struct TimeModelRow {
     std::string model;
-    std::string source;  // "calibration held-out" or "this view, timed now"
+    std::string source;  // "calibration held-out", "calibration, every viewpoint held out" or "this view, timed now"
     std::size_t samples = 0;
     double mean = NAN, median = NAN, p90 = NAN, max = NAN;  // |t_act − t_est| / t_act
 };

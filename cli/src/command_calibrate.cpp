@@ -186,6 +186,18 @@ void runCalibrate(const CalibrateOptions& options) {
         profile.samples.push_back(recorded);
     }
     profile.models = timemodel::fitAllModels(fitSamples, heldOutSamples);
+    {  // every viewpoint held out once, from the same draws
+        std::vector<timemodel::Sample> all;
+        std::vector<int> folds;
+        for (std::size_t i = 0; i < count; ++i) {
+            all.push_back(profile.samples[i].sample);
+            folds.push_back(plan.viewpoints[plan.samples[i].viewpoint].fold);
+        }
+        const std::vector<timemodel::ErrorStats> rotated = timemodel::rotatedHeldOutErrors(all, folds);
+        for (std::size_t m = 0; m < profile.models.size() && m < rotated.size(); ++m) {
+            profile.models[m].rotatedErrors = rotated[m];
+        }
+    }
     const bool anyFitted = std::any_of(profile.models.begin(), profile.models.end(),
                                        [](const timemodel::ModelResult& r) { return r.fitted; });
     if (!anyFitted) {
@@ -249,6 +261,7 @@ void runCalibrate(const CalibrateOptions& options) {
                 coefficients[r.coefficientNames[c]] = r.coefficients[c];
             entry["coefficients"] = coefficients;
             entry["held_out_errors"] = errorsJson(r.heldOutErrors);
+            entry["rotated_held_out_errors"] = errorsJson(r.rotatedErrors);
             entry["fit_errors"] = errorsJson(r.fitErrors);
             entry["notes"] = r.fit.notes;
             models.push_back(entry);
@@ -303,6 +316,15 @@ void runCalibrate(const CalibrateOptions& options) {
                   profile.heldOutViewpoints, options.clock.c_str(), passes, options.repeats, options.warmup,
                   100.0 * spread.median, 100.0 * spread.p90, 100.0 * repeatability.median, 100.0 * repeatability.p90);
     std::cout << line << timemodel::formatErrorTable(profile.models);
+    std::snprintf(line, sizeof line, "every viewpoint held out once (%d folds, %zu samples):", plan.folds, count);
+    std::cout << line;
+    for (const timemodel::ModelResult& r : profile.models) {
+        if (r.rotatedErrors.count == 0) continue;
+        std::snprintf(line, sizeof line, "  %s mean %.1f%% p90 %.1f%%", r.name.c_str(), 100.0 * r.rotatedErrors.mean,
+                      100.0 * r.rotatedErrors.p90);
+        std::cout << line;
+    }
+    std::cout << "\n";
     for (const timemodel::ModelResult& r : profile.models) {
         for (const std::string& note : r.fit.notes) std::cout << "  note (" << r.name << "): " << note << "\n";
     }

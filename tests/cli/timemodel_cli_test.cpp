@@ -76,6 +76,9 @@ TEST_F(TimeModelCli, CalibrateFitsEveryModelAndWritesAProfile) {
     EXPECT_EQ(report["models"][0]["name"], "linear");
     EXPECT_TRUE(report["models"][0]["fitted"].get<bool>());
     EXPECT_GT(report["models"][0]["held_out_errors"]["count"].get<int>(), 0);
+    // Every viewpoint held out once over the folds: every sample measured by a model that did
+    // not see its viewpoint.
+    EXPECT_EQ(report["models"][0]["rotated_held_out_errors"]["count"], 24);
     ASSERT_TRUE(std::filesystem::exists(sProfile));
     const lodopt::timemodel::DeviceProfile profile = lodopt::timemodel::loadProfile(sProfile);
     EXPECT_EQ(profile.scene, "harbor");

@@ -141,3 +141,64 @@ TEST(FitAllModels, ReportsEveryModelAndKeepsGoingWhenOneFails) {
     EXPECT_NE(table.find("linear"), std::string::npos);
     EXPECT_NE(table.find("dong  not fitted"), std::string::npos);
 }
+
+TEST(CalibrationPlan, FoldsHoldOutEveryViewpointOnceAndFoldZeroIsTheHeldOutSet) {
+    const scenes::Scene scene = scenes::makeHarborScene();
+    for (int jitter : {3, 0}) {
+        timemodel::CalibrationOptions options;
+        options.samples = 32;
+        options.jitteredPerView = jitter;
+        for (std::uint64_t seed : {1u, 2u, 7u}) {
+            options.seed = seed;
+            const timemodel::CalibrationPlan plan = timemodel::planCalibration(scene, options);
+            EXPECT_EQ(plan.folds, 4) << "jitter " << jitter;
+            std::vector<std::set<int>> foldsPerView(scene.views.size());
+            for (const timemodel::Viewpoint& v : plan.viewpoints) {
+                ASSERT_GE(v.fold, 0);
+                ASSERT_LT(v.fold, plan.folds);
+                EXPECT_EQ(v.fold == 0, v.heldOut) << v.camera.name << ", seed " << seed;
+                foldsPerView[std::size_t(v.namedView)].insert(v.fold);
+            }
+            // With jitter every named view's group has one viewpoint in each fold; without, the
+            // named views themselves rotate through the folds.
+            if (jitter == 3) {
+                for (const std::set<int>& folds : foldsPerView) EXPECT_EQ(folds.size(), 4u);
+            } else {
+                std::set<int> all;
+                for (const timemodel::Viewpoint& v : plan.viewpoints) all.insert(v.fold);
+                EXPECT_EQ(all.size(), std::min<std::size_t>(4, plan.viewpoints.size()));
+            }
+        }
+    }
+}
+
+TEST(RotatedHeldOutErrors, PoolsEveryFoldAndMatchesTheHeldOutFitOnFoldZero) {
+    // A linear truth plus a small, sample-specific wobble: each fold's fit is near but not exact.
+    std::vector<timemodel::Sample> samples;
+    std::vector<int> folds;
+    timemodel::SplitMix64 rng(11);
+    for (int i = 0; i < 48; ++i) {
+        timemodel::Sample s;
+        s.features[timemodel::Feature::kTriangles] = rng.between(1e3, 1e5);
+        s.features[timemodel::Feature::kVertices] = s.features[timemodel::Feature::kTriangles] * rng.between(0.5, 1.0);
+        s.features[timemodel::Feature::kTextureBytes] = rng.between(1e5, 1e6);
+        s.features[timemodel::Feature::kPixels] = rng.between(1e3, 1e5);
+        s.measuredMs = (0.5 + 3e-5 * s.features[timemodel::Feature::kTriangles]) * rng.between(0.95, 1.05);
+        s.viewpoint = i % 8;
+        samples.push_back(s);
+        folds.push_back(s.viewpoint % 4);
+    }
+    const std::vector<timemodel::ErrorStats> rotated = timemodel::rotatedHeldOutErrors(samples, folds);
+    ASSERT_EQ(rotated.size(), timemodel::timeModelNames().size());
+    std::vector<timemodel::Sample> fit, heldOut;
+    for (std::size_t i = 0; i < samples.size(); ++i) (folds[i] == 0 ? heldOut : fit).push_back(samples[i]);
+    const std::vector<timemodel::ModelResult> once = timemodel::fitAllModels(fit, heldOut);
+    for (std::size_t m = 0; m < rotated.size(); ++m) {
+        EXPECT_EQ(rotated[m].count, samples.size()) << once[m].name;  // every sample held out once
+        EXPECT_GT(rotated[m].max, 0.0) << once[m].name;
+        // Fold 0's errors are among the pooled ones: the pooled max is at least theirs.
+        EXPECT_GE(rotated[m].max, once[m].heldOutErrors.max - 1e-12) << once[m].name;
+    }
+    EXPECT_LT(rotated[0].mean, 0.06);  // linear, on a near-linear truth
+    EXPECT_THROW(timemodel::rotatedHeldOutErrors(samples, {0, 1}), timemodel::TimeModelError);
+}

@@ -44,6 +44,8 @@ timemodel::DeviceProfile sampleProfile() {
     profile.heldOutViewpoints = 1;
     profile.timing = {"cpu", 3, 2, 1, 0.05, 0.1, 12.5};
     profile.models = timemodel::fitAllModels(fit, heldOut);
+    // The first model with a rotated measurement, the others without (profiles from before it).
+    profile.models[0].rotatedErrors = {12, 0.05, 0.04, 0.11, 0.2};
     for (const auto& s : fit)
         profile.samples.push_back({s, false, s.measuredMs, 1.1 * s.measuredMs, 0.0, 1.05 * s.measuredMs});
     for (const auto& s : heldOut)
@@ -86,7 +88,11 @@ TEST(Profile, RoundTripsThroughJsonAndAFile) {
             EXPECT_DOUBLE_EQ(loaded.models[m].coefficients[c], profile.models[m].coefficients[c]);
         }
         EXPECT_DOUBLE_EQ(loaded.models[m].heldOutErrors.p90, profile.models[m].heldOutErrors.p90);
+        EXPECT_EQ(loaded.models[m].rotatedErrors.count, profile.models[m].rotatedErrors.count);
+        EXPECT_DOUBLE_EQ(loaded.models[m].rotatedErrors.p90, profile.models[m].rotatedErrors.p90);
     }
+    EXPECT_EQ(loaded.models[0].rotatedErrors.count, 12u);
+    EXPECT_EQ(loaded.models[1].rotatedErrors.count, 0u);
     ASSERT_EQ(loaded.samples.size(), profile.samples.size());
     EXPECT_DOUBLE_EQ(loaded.samples[5].sample.measuredMs, profile.samples[5].sample.measuredMs);
     EXPECT_DOUBLE_EQ(loaded.samples[5].wallMedianMs, profile.samples[5].wallMedianMs);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/constants.hpp>
+#include <memory>
 #include <sstream>
 
 namespace lodopt::timemodel {
@@ -117,11 +118,13 @@ CalibrationPlan planCalibration(const scenes::Scene& scene, const CalibrationOpt
             viewpoint.jittered = member > 0;
             viewpoint.camera = member == 0 ? named : jitterCamera(named, rng);
             if (viewpoint.jittered) viewpoint.camera.name = named.name + "~" + std::to_string(member);
-            if (group > 1) {
-                viewpoint.heldOut = member == static_cast<int>((g + options.seed) % std::uint64_t(group));
-            } else {
-                viewpoint.heldOut = (g + options.seed) % 4 == 0;
-            }
+            // Held out by rotation k when member == (g + seed + k) mod group (with no jitter:
+            // when (g + seed + k) mod 4 == 0); its fold is that k.
+            const int folds = group > 1 ? group : 4;
+            const int shifted = static_cast<int>((g + options.seed) % std::uint64_t(folds));
+            viewpoint.fold = ((group > 1 ? member : 0) - shifted + folds) % folds;
+            viewpoint.heldOut = viewpoint.fold == 0;
+            plan.folds = folds;
             plan.viewpoints.push_back(std::move(viewpoint));
         }
     }
@@ -130,6 +133,11 @@ CalibrationPlan planCalibration(const scenes::Scene& scene, const CalibrationOpt
     for (const Viewpoint& v : plan.viewpoints) (v.heldOut ? anyHeldOut : anyFitted) = true;
     if (!anyHeldOut) plan.viewpoints.back().heldOut = true;
     if (!anyFitted) plan.viewpoints.front().heldOut = false;
+    for (Viewpoint& v : plan.viewpoints) {  // keep fold 0 = held out after those fixes
+        if (v.heldOut) v.fold = 0;
+        if (!v.heldOut && v.fold == 0) v.fold = 1;
+    }
+    plan.folds = std::max(plan.folds, 2);
 
     plan.samples.reserve(std::size_t(options.samples));
     for (int i = 0; i < options.samples; ++i) {
@@ -160,6 +168,37 @@ std::vector<ModelResult> fitAllModels(const std::vector<Sample>& fitSamples, con
         results.push_back(std::move(result));
     }
     return results;
+}
+
+std::vector<ErrorStats> rotatedHeldOutErrors(const std::vector<Sample>& samples, const std::vector<int>& folds) {
+    if (folds.size() != samples.size()) throw TimeModelError("rotatedHeldOutErrors: one fold per sample is needed");
+    const std::vector<std::string> names = timeModelNames();
+    std::vector<std::vector<double>> errors(names.size());
+    std::vector<bool> failed(names.size(), false);
+    const int foldCount = folds.empty() ? 0 : *std::max_element(folds.begin(), folds.end()) + 1;
+    for (int fold = 0; fold < foldCount; ++fold) {
+        std::vector<Sample> fit, held;
+        for (std::size_t i = 0; i < samples.size(); ++i) (folds[i] == fold ? held : fit).push_back(samples[i]);
+        if (held.empty()) continue;
+        for (std::size_t m = 0; m < names.size(); ++m) {
+            if (failed[m]) continue;
+            std::unique_ptr<TimeModel> model = makeTimeModel(names[m]);
+            try {
+                model->fit(fit);
+            } catch (const TimeModelError&) {
+                failed[m] = true;
+                continue;
+            }
+            for (const Sample& s : held) {
+                errors[m].push_back(std::abs(s.measuredMs - model->estimateMs(s.features)) / s.measuredMs);
+            }
+        }
+    }
+    std::vector<ErrorStats> result(names.size());
+    for (std::size_t m = 0; m < names.size(); ++m) {
+        if (!failed[m]) result[m] = summarizeErrors(errors[m]);
+    }
+    return result;
 }
 
 std::string formatErrorTable(const std::vector<ModelResult>& results) {

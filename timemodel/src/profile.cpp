@@ -139,6 +139,7 @@ std::string profileToJson(const DeviceProfile& profile) {
                         {"notes", model.fit.notes},
                         {"errors", errorsToJson(model.fitErrors)}};
         entry["held_out_errors"] = errorsToJson(model.heldOutErrors);
+        if (model.rotatedErrors.count > 0) entry["rotated_held_out_errors"] = errorsToJson(model.rotatedErrors);
         models.push_back(entry);
     }
     Json featureNames = Json::array();
@@ -326,6 +327,9 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
         }
         result.fitErrors = read.errors(fit, "errors", at + ".fit");
         result.heldOutErrors = read.errors(entry, "held_out_errors", at);
+        if (entry.contains("rotated_held_out_errors")) {  // profiles from before 2026-12-03 lack it
+            result.rotatedErrors = read.errors(entry, "rotated_held_out_errors", at);
+        }
         profile.models.push_back(std::move(result));
     }
 

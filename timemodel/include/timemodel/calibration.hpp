@@ -5,6 +5,8 @@
 //               (yaw ±25°, pitch ±10°, distance ×0.78..1.28, target moved ≤ 4% of the distance);
 //   held out    whole viewpoints: one per named view's group, rotating with the seed (with no
 //               jitter, every fourth named view); no held-out viewpoint is ever fitted;
+//   folds       the same rotation continued: fold k holds out what seed + k would, so that every
+//               viewpoint is held out once over the folds (fold 0 = the held-out viewpoints);
 //   samples     round-robin over viewpoints; half draw every object's level uniformly with
 //               some objects not drawn (probability notDrawnProbability), half are skewed
 //               (a per-sample preferred level and drawn fraction, all objects drawn in 40% of
@@ -49,6 +51,7 @@ struct Viewpoint {
     int namedView = -1;  // the scene view it was derived from
     bool jittered = false;
     bool heldOut = false;
+    int fold = 0;  // the fold that holds it out: 0 for the held-out viewpoints
 };
 
 struct PlannedSample {
@@ -59,6 +62,7 @@ struct PlannedSample {
 struct CalibrationPlan {
     std::vector<Viewpoint> viewpoints;
     std::vector<PlannedSample> samples;
+    int folds = 1;  // viewpoints' folds are in [0, folds)
 };
 
 // Throws TimeModelError for unusable options (too few samples, a view index out of range, a
@@ -78,11 +82,19 @@ struct ModelResult {
     FitReport fit;
     ErrorStats fitErrors;      // on the fitted samples
     ErrorStats heldOutErrors;  // on the held-out viewpoints' samples
+    // Every viewpoint held out once (rotatedHeldOutErrors); count 0 when not measured.
+    ErrorStats rotatedErrors;
 };
 
 // Fits every model of timeModelNames() to `fitSamples` and measures them on `heldOut`; a
 // model that cannot be fitted is reported (fitted = false, failure) rather than thrown.
 std::vector<ModelResult> fitAllModels(const std::vector<Sample>& fitSamples, const std::vector<Sample>& heldOut);
+
+// Every viewpoint held out once: for each fold, every model fitted on the samples of the other
+// folds and measured on that fold's; the errors of all folds pooled, per model of
+// timeModelNames() (count 0 for a model that could not be fitted on some fold). `folds[i]` is
+// sample i's fold. Less hostage than heldOutErrors to which few viewpoints one seed holds out.
+std::vector<ErrorStats> rotatedHeldOutErrors(const std::vector<Sample>& samples, const std::vector<int>& folds);
 
 // The published-style table: per model, mean / median / p90 / max of |t_act − t_est| / t_act
 // on the held-out samples (and the fit mean), in percent.
