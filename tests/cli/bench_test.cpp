@@ -15,29 +15,17 @@
 #include <sstream>
 
 #include "report_data.hpp"
+#include "run_lodopt.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-    int exitCode = -1;
-    std::string output;  // stdout only
-};
-
-CommandResult runCommand(const std::string& command) {
-    CommandResult result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return result;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
-}
+using lodopt::cli_test::CommandResult;
+using lodopt::cli_test::runShell;
 
 CommandResult runLodopt(const std::string& arguments) {
-    return runCommand(std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null");
+    return runShell(std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null");
 }
 
 std::string readText(const fs::path& path) {
@@ -160,14 +148,14 @@ TEST_F(BenchCli, ProgressGoesToTheTerminalAndJsonStdoutStaysClean) {
                               " bench --scene harbor --size 64x64 --profile " + sProfile +
                               " --quick --algos random --evals 20 --candidates 4 --timing-frames 2 --out " +
                               (sDir / "terminal").string() + " --json > " + out.string();
-    const CommandResult terminal = runCommand("script -qec '" + inner + "' /dev/null");
+    const CommandResult terminal = runShell("script -qec '" + inner + "' /dev/null");
     ASSERT_EQ(terminal.exitCode, 0) << terminal.output;
     EXPECT_NE(terminal.output.find("bench ["), std::string::npos) << terminal.output;
     EXPECT_NE(terminal.output.find("ETA"), std::string::npos);
     const nlohmann::json document = nlohmann::json::parse(readText(out));  // throws if polluted
     EXPECT_EQ(document["algorithms"], nlohmann::json::array({"random"}));
     // --quiet: no progress line even on a terminal.
-    const CommandResult quiet = runCommand("script -qec '" + inner + " --quiet' /dev/null");
+    const CommandResult quiet = runShell("script -qec '" + inner + " --quiet' /dev/null");
     ASSERT_EQ(quiet.exitCode, 0);
     EXPECT_EQ(quiet.output.find("bench ["), std::string::npos) << quiet.output;
 }

@@ -4,27 +4,14 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
+
+#include "run_lodopt.hpp"
 
 namespace {
 
-struct CommandResult {
-    int exitCode = -1;
-    std::string output;  // stdout only
-};
-
-CommandResult runLodopt(const std::string& arguments) {
-    const std::string command = std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null";
-    CommandResult result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return result;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-    int status = pclose(pipe);
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
-}
+using lodopt::cli_test::CommandResult;
+using lodopt::cli_test::runLodopt;
 
 std::filesystem::path tempDir(const std::string& name) {
     auto dir = std::filesystem::temp_directory_path() / ("lodopt-cli-" + name + "-" + std::to_string(::getpid()));
@@ -80,8 +67,8 @@ TEST_P(CliSceneRoundTrip, ExportThenInfoGivesTheSameStatistics) {
             for (const char* key : {"vertices", "triangles", "texture_bytes", "draw_calls"}) {
                 if (a["levels"][l][key] != b["levels"][l][key]) {
                     ++mismatches;
-                    ADD_FAILURE() << a["name"] << " level " << l << " " << key << ": " << a["levels"][l][key] << " became "
-                                  << b["levels"][l][key];
+                    ADD_FAILURE() << a["name"] << " level " << l << " " << key << ": " << a["levels"][l][key]
+                                  << " became " << b["levels"][l][key];
                 }
             }
         }

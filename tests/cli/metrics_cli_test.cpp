@@ -6,29 +6,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include "run_lodopt.hpp"
 
 namespace {
 
-struct LodoptRun {
-    int exitCode = -1;
-    std::string output;  // stdout only
-};
+using LodoptRun = lodopt::cli_test::CommandResult;
 
-LodoptRun lodopt(const std::string& arguments) {
-    const std::string command = std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null";
-    LodoptRun result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return result;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
-}
+using lodopt::cli_test::runLodopt;
 
 class MetricsCli : public ::testing::Test {
 protected:
@@ -66,7 +54,7 @@ protected:
 
 TEST_F(MetricsCli, JsonReportsEveryComponent) {
     const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
-    const LodoptRun run = lodopt("metrics " + a + " " + b + " --json");
+    const LodoptRun run = runLodopt("metrics " + a + " " + b + " --json");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     const nlohmann::json result = nlohmann::json::parse(run.output);
     for (const char* key : {"ssim", "boundary_entropy", "information_entropy"}) {
@@ -91,7 +79,7 @@ TEST_F(MetricsCli, JsonReportsEveryComponent) {
 
 TEST_F(MetricsCli, IdenticalImagesScoreOne) {
     const std::string a = scene("a.ppm", 24, 3);
-    const nlohmann::json result = nlohmann::json::parse(lodopt("metrics " + a + " " + a + " --json").output);
+    const nlohmann::json result = nlohmann::json::parse(runLodopt("metrics " + a + " " + a + " --json").output);
     EXPECT_EQ(result["fitness"].get<double>(), 1.0);
     EXPECT_EQ(result["ssim"]["candidate"].get<double>(), 1.0);
     EXPECT_EQ(result["precision"].get<double>(), 1.0);
@@ -99,7 +87,7 @@ TEST_F(MetricsCli, IdenticalImagesScoreOne) {
 
 TEST_F(MetricsCli, WeightsSelectAndSkipComponents) {
     const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
-    const LodoptRun run = lodopt("metrics " + a + " " + b + " --weights 1,0,0 --json");
+    const LodoptRun run = runLodopt("metrics " + a + " " + b + " --weights 1,0,0 --json");
     ASSERT_EQ(run.exitCode, 0);
     const nlohmann::json result = nlohmann::json::parse(run.output);
     EXPECT_FALSE(result["boundary_entropy"]["computed"].get<bool>());
@@ -110,7 +98,7 @@ TEST_F(MetricsCli, WeightsSelectAndSkipComponents) {
 TEST_F(MetricsCli, GrayImagesAreUsedAsTheyAre) {
     const std::string a = write("a.pgm", 20, 20, 1, [](int x, int y, int) { return (x * 13 + y * 7) % 256; });
     const std::string b = write("b.pgm", 20, 20, 1, [](int x, int y, int) { return (x * 13 + y * 5) % 256; });
-    const LodoptRun run = lodopt("metrics " + a + " " + b + " --json");
+    const LodoptRun run = runLodopt("metrics " + a + " " + b + " --json");
     ASSERT_EQ(run.exitCode, 0);
     const nlohmann::json result = nlohmann::json::parse(run.output);
     EXPECT_EQ(result["channels"], 1);
@@ -119,7 +107,7 @@ TEST_F(MetricsCli, GrayImagesAreUsedAsTheyAre) {
 
 TEST_F(MetricsCli, TextOutputListsTheComponents) {
     const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
-    const LodoptRun run = lodopt("metrics " + a + " " + b);
+    const LodoptRun run = runLodopt("metrics " + a + " " + b);
     ASSERT_EQ(run.exitCode, 0);
     for (const char* word : {"ssim", "boundary_entropy", "information_entropy", "precision", "recall", "fitness"}) {
         EXPECT_NE(run.output.find(word), std::string::npos) << word;
@@ -131,16 +119,16 @@ TEST_F(MetricsCli, BadInputIsExitCode2) {
     const std::string gray = write("g.pgm", 32, 32, 1, [](int, int, int) { return 9; });
     const std::string garbage = (mDir / "garbage.png").string();
     std::ofstream(garbage) << "not a png";
-    EXPECT_EQ(lodopt("metrics " + a + " " + small).exitCode, 2);              // size mismatch
-    EXPECT_EQ(lodopt("metrics " + a + " " + gray).exitCode, 2);               // gray vs color
-    EXPECT_EQ(lodopt("metrics " + a + " " + garbage).exitCode, 2);            // unreadable
-    EXPECT_EQ(lodopt("metrics " + a + " " + (mDir / "none.png").string()).exitCode, 2);  // missing
-    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --weights 1,1").exitCode, 2);
-    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --weights 0,0,0").exitCode, 2);
-    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --weights 1,-1,1").exitCode, 2);
-    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --weights 1,nan,1").exitCode, 2);
-    EXPECT_EQ(lodopt("metrics " + a + " " + a + " --gray hsv").exitCode, 2);
-    EXPECT_EQ(lodopt("metrics " + a).exitCode, 2);
+    EXPECT_EQ(runLodopt("metrics " + a + " " + small).exitCode, 2);                         // size mismatch
+    EXPECT_EQ(runLodopt("metrics " + a + " " + gray).exitCode, 2);                          // gray vs color
+    EXPECT_EQ(runLodopt("metrics " + a + " " + garbage).exitCode, 2);                       // unreadable
+    EXPECT_EQ(runLodopt("metrics " + a + " " + (mDir / "none.png").string()).exitCode, 2);  // missing
+    EXPECT_EQ(runLodopt("metrics " + a + " " + a + " --weights 1,1").exitCode, 2);
+    EXPECT_EQ(runLodopt("metrics " + a + " " + a + " --weights 0,0,0").exitCode, 2);
+    EXPECT_EQ(runLodopt("metrics " + a + " " + a + " --weights 1,-1,1").exitCode, 2);
+    EXPECT_EQ(runLodopt("metrics " + a + " " + a + " --weights 1,nan,1").exitCode, 2);
+    EXPECT_EQ(runLodopt("metrics " + a + " " + a + " --gray hsv").exitCode, 2);
+    EXPECT_EQ(runLodopt("metrics " + a).exitCode, 2);
 }
 
 }  // namespace

@@ -5,27 +5,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
+
+#include "run_lodopt.hpp"
 
 namespace {
 
-struct CommandRun {
-    int exitCode = -1;
-    std::string output;
-};
+using CommandRun = lodopt::cli_test::CommandResult;
 
-CommandRun lodopt(const std::string& arguments) {
-    const std::string command = std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null";
-    CommandRun run;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return run;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) run.output.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
+using lodopt::cli_test::runLodopt;
 
 class OptimizeCli : public testing::Test {
 protected:
@@ -51,14 +39,14 @@ const char* kSmall = " --scene harbor --size 128x128 --max-iterations 8 --quiet"
 
 TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
     const auto out = dir / "gapso";
-    CommandRun run = lodopt(std::string("optimize") + kSmall + " --view ship_close --budget-ms 4 --seed 2 --out " +
-                     out.string() + " --json");
+    CommandRun run = runLodopt(std::string("optimize") + kSmall + " --view ship_close --budget-ms 4 --seed 2 --out " +
+                               out.string() + " --json");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     nlohmann::json printed = nlohmann::json::parse(run.output);
     nlohmann::json result = readJson(out / "result.json");
     EXPECT_EQ(printed["combination"], result["combination"]);
-    for (const char* key : {"levels", "fitness", "ssim", "boundary_entropy", "information_entropy", "precision", "recall",
-                            "predicted_ms", "budget_ms", "evaluations", "cache_hits", "skipped_objects",
+    for (const char* key : {"levels", "fitness", "ssim", "boundary_entropy", "information_entropy", "precision",
+                            "recall", "predicted_ms", "budget_ms", "evaluations", "cache_hits", "skipped_objects",
                             "setup_seconds", "evals_per_second", "wall_seconds"}) {
         EXPECT_TRUE(result.contains(key)) << key;
     }
@@ -91,21 +79,17 @@ TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
 TEST_F(OptimizeCli, BudgetBelowTheCheapestCombinationIsBadInputStatingTheMinimum) {
     const std::string command = std::string(LODOPT_EXECUTABLE) + " optimize" + kSmall + " --budget-ms 0.01 --out " +
                                 (dir / "none").string() + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    std::string text;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) text.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    EXPECT_EQ(WEXITSTATUS(status), 2);
-    EXPECT_NE(text.find("cheapest"), std::string::npos) << text;
+    const CommandRun run = lodopt::cli_test::runShell(command);  // stdout and stderr
+    EXPECT_EQ(run.exitCode, 2);
+    EXPECT_NE(run.output.find("cheapest"), std::string::npos) << run.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "none" / "result.json"));
 }
 
 TEST_F(OptimizeCli, SameSeedSameResultAcrossThreadCounts) {
     auto resultOf = [&](const std::string& name, const std::string& extra) {
         const auto out = dir / name;
-        CommandRun run = lodopt(std::string("optimize") + kSmall + " --budget-ms 4.5 --seed 5 --out " + out.string() + extra);
+        CommandRun run =
+            runLodopt(std::string("optimize") + kSmall + " --budget-ms 4.5 --seed 5 --out " + out.string() + extra);
         EXPECT_EQ(run.exitCode, 0);
         nlohmann::json result = readJson(out / "result.json");
         for (const char* timing : {"setup_seconds", "evals_per_second", "search_seconds", "wall_seconds"}) {
@@ -121,10 +105,11 @@ TEST_F(OptimizeCli, SameSeedSameResultAcrossThreadCounts) {
 }
 
 TEST_F(OptimizeCli, FullEvaluationPathAgreesWithTheFastPath) {
-    CommandRun fast = lodopt(std::string("optimize") + kSmall + " --algo exhaustive --budget-ms 4 --out " +
-                      (dir / "fast").string() + " --json");
-    CommandRun full = lodopt(std::string("optimize") + kSmall + " --algo exhaustive --eval full --budget-ms 4 --out " +
-                      (dir / "full").string() + " --json");
+    CommandRun fast = runLodopt(std::string("optimize") + kSmall + " --algo exhaustive --budget-ms 4 --out " +
+                                (dir / "fast").string() + " --json");
+    CommandRun full =
+        runLodopt(std::string("optimize") + kSmall + " --algo exhaustive --eval full --budget-ms 4 --out " +
+                  (dir / "full").string() + " --json");
     ASSERT_EQ(fast.exitCode, 0);
     ASSERT_EQ(full.exitCode, 0);
     nlohmann::json a = nlohmann::json::parse(fast.output), b = nlohmann::json::parse(full.output);
@@ -135,9 +120,9 @@ TEST_F(OptimizeCli, FullEvaluationPathAgreesWithTheFastPath) {
 
 TEST_F(OptimizeCli, CompareWritesATableForEveryAlgorithm) {
     const auto out = dir / "compare";
-    CommandRun run = lodopt(std::string("compare") + kSmall +
-                     " --budget-ms 4 --algos gapso,pso,random,screensize --seeds 2 --evals 20 --out " + out.string() +
-                     " --json");
+    CommandRun run = runLodopt(std::string("compare") + kSmall +
+                               " --budget-ms 4 --algos gapso,pso,random,screensize --seeds 2 --evals 20 --out " +
+                               out.string() + " --json");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     nlohmann::json table = nlohmann::json::parse(run.output);
     ASSERT_EQ(table["algorithms"].size(), 4u);
@@ -150,11 +135,11 @@ TEST_F(OptimizeCli, CompareWritesATableForEveryAlgorithm) {
 }
 
 TEST_F(OptimizeCli, BadOptionsAreUsageErrors) {
-    EXPECT_EQ(lodopt("optimize --budget-ms 4 --algo magic --out " + (dir / "x").string()).exitCode, 2);
-    EXPECT_EQ(lodopt("optimize --budget-ms -1").exitCode, 2);
-    EXPECT_EQ(lodopt("optimize --budget-ms 4 --weights 0,0,0").exitCode, 2);
-    EXPECT_EQ(lodopt("optimize --budget-ms 4 --weights a,b").exitCode, 2);
-    EXPECT_EQ(lodopt("optimize").exitCode, 2);  // --budget-ms is required
+    EXPECT_EQ(runLodopt("optimize --budget-ms 4 --algo magic --out " + (dir / "x").string()).exitCode, 2);
+    EXPECT_EQ(runLodopt("optimize --budget-ms -1").exitCode, 2);
+    EXPECT_EQ(runLodopt("optimize --budget-ms 4 --weights 0,0,0").exitCode, 2);
+    EXPECT_EQ(runLodopt("optimize --budget-ms 4 --weights a,b").exitCode, 2);
+    EXPECT_EQ(runLodopt("optimize").exitCode, 2);  // --budget-ms is required
 }
 
 // The default optimize starts its swarm from screensize's and mckp's answers, so on every
@@ -166,9 +151,10 @@ TEST_F(OptimizeCli, DefaultOptimizerNeverLosesToScreensize) {
         // At 128x128 the shipped profile predicts 0.23-0.57 ms all-coarsest, 1.0-2.5 ms all-finest.
         const std::string common = std::string(" --scene harbor --size 128x128 --quiet --max-iterations 2 --view ") +
                                    view + " --budget-ms 0.9";
-        ASSERT_EQ(lodopt("optimize" + common + " --out " + (dir / "seeded").string()).exitCode, 0);
-        ASSERT_EQ(lodopt("optimize" + common + " --algo screensize --out " + (dir / "engine").string()).exitCode, 0);
-        ASSERT_EQ(lodopt("optimize" + common + " --seed-from none --out " + (dir / "unseeded").string()).exitCode, 0);
+        ASSERT_EQ(runLodopt("optimize" + common + " --out " + (dir / "seeded").string()).exitCode, 0);
+        ASSERT_EQ(runLodopt("optimize" + common + " --algo screensize --out " + (dir / "engine").string()).exitCode, 0);
+        ASSERT_EQ(runLodopt("optimize" + common + " --seed-from none --out " + (dir / "unseeded").string()).exitCode,
+                  0);
         const nlohmann::json seeded = readJson(dir / "seeded" / "result.json");
         const nlohmann::json engine = readJson(dir / "engine" / "result.json");
         const nlohmann::json unseeded = readJson(dir / "unseeded" / "result.json");
@@ -178,6 +164,6 @@ TEST_F(OptimizeCli, DefaultOptimizerNeverLosesToScreensize) {
         EXPECT_LE(seeded["predicted_ms"].get<double>(), 0.9);
         EXPECT_LT(engine["search_fitness"].get<double>(), 1.0) << "the budget should force coarser levels";
     }
-    EXPECT_EQ(lodopt("optimize --budget-ms 4 --seed-from magic --out " + (dir / "x").string()).exitCode, 2);
-    EXPECT_EQ(lodopt("optimize --budget-ms 4 --seed-from mckp,nope --out " + (dir / "x").string()).exitCode, 2);
+    EXPECT_EQ(runLodopt("optimize --budget-ms 4 --seed-from magic --out " + (dir / "x").string()).exitCode, 2);
+    EXPECT_EQ(runLodopt("optimize --budget-ms 4 --seed-from mckp,nope --out " + (dir / "x").string()).exitCode, 2);
 }

@@ -18,30 +18,20 @@
 #include "report_data.hpp"
 #include "report_html.hpp"
 #include "report_images.hpp"
+#include "run_lodopt.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-    int exitCode = -1;
-    std::string output;  // stdout only
-};
+using lodopt::cli_test::CommandResult;
 
 // `environment` is prepended to the command line ("LODOPT_GNUPLOT=none").
 CommandResult runWith(const std::string& environment, const std::string& arguments) {
-    const std::string command = environment + " " + std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null";
-    CommandResult result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return result;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
+    return lodopt::cli_test::runLodopt(arguments, environment);
 }
 CommandResult run(const std::string& arguments) {
-    return runWith("", arguments);
+    return lodopt::cli_test::runLodopt(arguments);
 }
 
 std::string readText(const fs::path& path) {

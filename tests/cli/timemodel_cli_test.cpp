@@ -11,25 +11,15 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "run_lodopt.hpp"
 #include "timemodel/profile.hpp"
 
 namespace {
 
-struct CommandResult {
-    int exitCode = -1;
-    std::string output;  // stdout only
-};
+using lodopt::cli_test::CommandResult;
 
 CommandResult run(const std::string& arguments) {
-    const std::string command = std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null";
-    CommandResult result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return result;
-    std::array<char, 4096> buffer;
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-    const int status = pclose(pipe);
-    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
+    return lodopt::cli_test::runLodopt(arguments);
 }
 
 // One tiny calibration shared by the tests of this file (timing it once keeps the suite fast).

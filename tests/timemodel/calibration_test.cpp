@@ -10,6 +10,22 @@
 
 using namespace lodopt;
 
+namespace {
+
+// A sample with random triangles, vertices and pixels, and texture bytes when `textured`; its
+// measured time is left for the test to set.
+timemodel::Sample randomSample(timemodel::SplitMix64& rng, bool textured) {
+    using timemodel::Feature;
+    timemodel::Sample s;
+    s.features[Feature::kTriangles] = rng.between(1e3, 1e5);
+    s.features[Feature::kVertices] = s.features[Feature::kTriangles] * rng.between(0.5, 1.0);
+    if (textured) s.features[Feature::kTextureBytes] = rng.between(1e5, 1e6);
+    s.features[Feature::kPixels] = rng.between(1e3, 1e5);
+    return s;
+}
+
+}  // namespace
+
 TEST(SplitMix64, IsAFixedPortableSequence) {
     // Reference values of SplitMix64 seeded with 0 (Vigna's splitmix64.c).
     timemodel::SplitMix64 rng(0);
@@ -120,10 +136,7 @@ TEST(FitAllModels, ReportsEveryModelAndKeepsGoingWhenOneFails) {
     std::vector<timemodel::Sample> fit, heldOut;
     timemodel::SplitMix64 rng(3);
     for (int i = 0; i < 30; ++i) {
-        timemodel::Sample s;
-        s.features[timemodel::Feature::kTriangles] = rng.between(1e3, 1e5);
-        s.features[timemodel::Feature::kVertices] = s.features[timemodel::Feature::kTriangles] * rng.between(0.5, 1.0);
-        s.features[timemodel::Feature::kPixels] = rng.between(1e3, 1e5);
+        timemodel::Sample s = randomSample(rng, false);
         s.measuredMs = 0.5 + 3e-5 * s.features[timemodel::Feature::kTriangles];
         (i % 3 == 0 ? heldOut : fit).push_back(s);
     }
@@ -178,11 +191,7 @@ TEST(RotatedHeldOutErrors, PoolsEveryFoldAndMatchesTheHeldOutFitOnFoldZero) {
     std::vector<int> folds;
     timemodel::SplitMix64 rng(11);
     for (int i = 0; i < 48; ++i) {
-        timemodel::Sample s;
-        s.features[timemodel::Feature::kTriangles] = rng.between(1e3, 1e5);
-        s.features[timemodel::Feature::kVertices] = s.features[timemodel::Feature::kTriangles] * rng.between(0.5, 1.0);
-        s.features[timemodel::Feature::kTextureBytes] = rng.between(1e5, 1e6);
-        s.features[timemodel::Feature::kPixels] = rng.between(1e3, 1e5);
+        timemodel::Sample s = randomSample(rng, true);
         s.measuredMs = (0.5 + 3e-5 * s.features[timemodel::Feature::kTriangles]) * rng.between(0.95, 1.05);
         s.viewpoint = i % 8;
         samples.push_back(s);
