@@ -22,11 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 using lodopt::cli_test::CommandResult;
+using lodopt::cli_test::runLodopt;
 using lodopt::cli_test::runShell;
-
-CommandResult runLodopt(const std::string& arguments) {
-    return runShell(std::string(LODOPT_EXECUTABLE) + " " + arguments + " 2>/dev/null");
-}
 
 std::string readText(const fs::path& path) {
     std::ifstream file(path, std::ios::binary);

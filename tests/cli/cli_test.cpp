@@ -67,8 +67,8 @@ TEST_P(CliSceneRoundTrip, ExportThenInfoGivesTheSameStatistics) {
             for (const char* key : {"vertices", "triangles", "texture_bytes", "draw_calls"}) {
                 if (a["levels"][l][key] != b["levels"][l][key]) {
                     ++mismatches;
-                    ADD_FAILURE() << a["name"] << " level " << l << " " << key << ": " << a["levels"][l][key]
-                                  << " became " << b["levels"][l][key];
+                    ADD_FAILURE() << a["name"] << " level " << l << " " << key << ": " << a["levels"][l][key] << " became "
+                                  << b["levels"][l][key];
                 }
             }
         }

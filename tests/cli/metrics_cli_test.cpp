@@ -15,7 +15,6 @@
 namespace {
 
 using LodoptRun = lodopt::cli_test::CommandResult;
-
 using lodopt::cli_test::runLodopt;
 
 class MetricsCli : public ::testing::Test {

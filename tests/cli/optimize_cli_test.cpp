@@ -12,7 +12,6 @@
 namespace {
 
 using CommandRun = lodopt::cli_test::CommandResult;
-
 using lodopt::cli_test::runLodopt;
 
 class OptimizeCli : public testing::Test {
@@ -45,8 +44,8 @@ TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
     nlohmann::json printed = nlohmann::json::parse(run.output);
     nlohmann::json result = readJson(out / "result.json");
     EXPECT_EQ(printed["combination"], result["combination"]);
-    for (const char* key : {"levels", "fitness", "ssim", "boundary_entropy", "information_entropy", "precision",
-                            "recall", "predicted_ms", "budget_ms", "evaluations", "cache_hits", "skipped_objects",
+    for (const char* key : {"levels", "fitness", "ssim", "boundary_entropy", "information_entropy", "precision", "recall",
+                            "predicted_ms", "budget_ms", "evaluations", "cache_hits", "skipped_objects",
                             "setup_seconds", "evals_per_second", "wall_seconds"}) {
         EXPECT_TRUE(result.contains(key)) << key;
     }

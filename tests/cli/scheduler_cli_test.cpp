@@ -70,8 +70,7 @@ std::size_t savedFrames(const std::filesystem::path& checkpoint) {
 
 // Sends `signal` to `pid` once `checkpoint` holds `frames` frames (or the process has ended).
 void killAfterFrames(pid_t pid, const std::filesystem::path& checkpoint, std::size_t frames, int signal) {
-    lodopt::cli_test::signalWhen(
-        pid, [&] { return savedFrames(checkpoint) >= frames; }, signal);
+    lodopt::cli_test::signalWhen(pid, [&] { return savedFrames(checkpoint) >= frames; }, signal);
 }
 
 // frames.csv as rows of cells, without the named columns (wall times).
@@ -222,9 +221,8 @@ TEST_F(SchedulerCli, TuneReportsTunedAndPublishedFractions) {
     EXPECT_EQ(report["selection"]["rule"], "tuning");
     EXPECT_FALSE(report["selection"].contains("folds"));
     EXPECT_FALSE(report["forms"]["published"].contains("cross_validated_fraction"));
-    const int best =
-        lodopt::cli::firstBestAbove(-INFINITY, {report["forms"]["published"]["tuning_fraction"].get<double>(),
-                                                report["forms"]["extended"]["tuning_fraction"].get<double>()});
+    const int best = lodopt::cli::firstBestAbove(-INFINITY, {report["forms"]["published"]["tuning_fraction"].get<double>(),
+                                                              report["forms"]["extended"]["tuning_fraction"].get<double>()});
     const std::string writtenForm = best == 1 ? "extended" : "published";
     EXPECT_EQ(report["selection"]["written"], writtenForm);
     EXPECT_EQ(report["coefficients"], report["forms"][writtenForm]["coefficients"]);
@@ -276,8 +274,8 @@ TEST_F(SchedulerCli, SelectCvWithOneTuningViewFallsBackToTheTuningScore) {
     const std::string out = (sDir / "tune_two" / "coeffs.json").string();
     const CommandResult result =
         run("tune --scene harbor --views 2 --evals 8 --max-iterations 2 --search-evals 8 --size 96x96 --threads 1 "
-            "--profile " +
-            sProfile + " --budget-ms " + std::to_string(sBudget) + " --out " + out + " --select cv --quiet --json");
+            "--profile " + sProfile + " --budget-ms " + std::to_string(sBudget) + " --out " + out +
+            " --select cv --quiet --json");
     ASSERT_EQ(result.exitCode, 0) << result.output;
     const nlohmann::json report = parseOrFail(result);
     EXPECT_EQ(report["selection"]["rule"], "tuning");
@@ -379,14 +377,13 @@ TEST_F(SchedulerCli, BadInputExitsWithTwo) {
     EXPECT_EQ(run("tune --scene harbor --views 1 --budget-ms 5" + common).exitCode, 2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-control 1,2" + common).exitCode,
               2);
-    EXPECT_EQ(
-        run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --render --frame-time mean" + common).exitCode,
-        2);
+    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --render --frame-time mean" + common)
+                  .exitCode,
+              2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-rule dwell" + common).exitCode,
               2);
-    EXPECT_EQ(
-        run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --render --noise-probe -1" + common).exitCode,
-        2);
+    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --render --noise-probe -1" + common).exitCode,
+              2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-margin 1" + common).exitCode, 2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-refill 1" + common).exitCode, 2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-refill -0.1" + common).exitCode,

@@ -1,17 +1,17 @@
 // Evaluation: skipping, level merging, fast path == full path, thread-count independence.
-#include "evaluation/evaluation.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <random>
 
-#include "box_objects.hpp"
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "evaluation/evaluation.hpp"
 #include "evaluation/time_cost.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/mesh_builder.hpp"
+#include "box_objects.hpp"
 
 using namespace lodopt;
 using lodopt::test_scenes::boxObject;
@@ -30,8 +30,7 @@ scenes::Scene skipScene() {
     scene.materials.push_back({"grey", {0.5f, 0.5f, 0.5f, 1.0f}, -1});
     scene.objects.push_back(boxObject("visible", {0, 0, 0}, {{1, 1, 1}, {1, 1, 1}, {0.5f, 0.5f, 0.5f}}, 0));
     scene.objects.push_back(boxObject("behind", {0, 0, 30}, {{1, 1, 1}, {0.5f, 0.5f, 0.5f}}, 0));
-    scene.objects.push_back(
-        boxObject("speck", {0, 0, -490}, {{0.001f, 0.001f, 0.001f}, {0.0005f, 0.0005f, 0.0005f}}, 0));
+    scene.objects.push_back(boxObject("speck", {0, 0, -490}, {{0.001f, 0.001f, 0.001f}, {0.0005f, 0.0005f, 0.0005f}}, 0));
     scene.objects.push_back(boxObject("wall", {0, 0, -5}, {{40, 40, 0.1f}, {40, 40, 0.1f}}, 1));
     scene.objects.push_back(boxObject("hidden", {3, 0, -10}, {{1, 1, 1}, {0.5f, 0.5f, 0.5f}}, 0));
     scenes::Camera camera;
@@ -170,9 +169,10 @@ TEST(Evaluators, FullPathKeepsNoStateBetweenCandidates) {
         const metrics::MetricResult reused = full.metricsOf(combination);
         renderer::Frame frame;
         renderer.render(setup.toScene(combination), setup.camera(), frame);
-        const metrics::MetricResult fresh = metrics::evaluate(
-            metrics::makeImageView(frame.rgba.data(), frame.width, frame.height, 4),
-            metrics::makeImageView(setup.reference().rgba.data(), frame.width, frame.height, 4), parameters);
+        const metrics::MetricResult fresh =
+            metrics::evaluate(metrics::makeImageView(frame.rgba.data(), frame.width, frame.height, 4),
+                              metrics::makeImageView(setup.reference().rgba.data(), frame.width, frame.height, 4),
+                              parameters);
         const std::string name = optimizer::formatCombination(combination);
         EXPECT_EQ(reused.fitness, fresh.fitness) << name;
         EXPECT_EQ(reused.ssim, fresh.ssim) << name;
@@ -183,7 +183,7 @@ TEST(Evaluators, FullPathKeepsNoStateBetweenCandidates) {
         if (fresh.fitness < 1.0) ++belowOne;
     }
     EXPECT_DOUBLE_EQ(full.metricsOf(combinations[0]).fitness, 1.0);  // the reference itself
-    EXPECT_GT(belowOne, 0);                                          // the candidates really differ from the reference
+    EXPECT_GT(belowOne, 0);  // the candidates really differ from the reference
 }
 
 TEST(Evaluators, BatchScoresDoNotDependOnThreadCountStatesOrOrder) {
@@ -218,8 +218,7 @@ TEST(Evaluators, BatchScoresDoNotDependOnThreadCountStatesOrOrder) {
         EXPECT_EQ(serial[k].fitness, oneState[k].fitness) << k;
         EXPECT_EQ(serial[k].fitness, manyStates[k].fitness) << k;
         EXPECT_EQ(serial[k].fitness, one.evaluate(batch[k]).fitness) << k;
-        for (int c = 0; c < serial[k].componentCount; ++c)
-            EXPECT_EQ(serial[k].components[c], parallel[k].components[c]);
+        for (int c = 0; c < serial[k].componentCount; ++c) EXPECT_EQ(serial[k].components[c], parallel[k].components[c]);
     }
 }
 
@@ -236,8 +235,7 @@ TEST(Evaluators, SearchParametersSkipOnlyPrecisionAndRecall) {
     evaluation::LayerEvaluator fastAll(setup, all), fastSearch(setup, search);
     evaluation::FullRenderEvaluator fullSearch(setup, renderer, search);
     EXPECT_EQ(fastAll.componentNames().size(), 5u);
-    EXPECT_EQ(fastSearch.componentNames(),
-              (std::vector<std::string>{"ssim", "boundary_entropy", "information_entropy"}));
+    EXPECT_EQ(fastSearch.componentNames(), (std::vector<std::string>{"ssim", "boundary_entropy", "information_entropy"}));
     std::mt19937 random(2);
     for (int trial = 0; trial < 6; ++trial) {
         const optimizer::Combination combination = randomCombination(setup.levelCounts(), random);
@@ -291,8 +289,8 @@ TEST(TimeModelCost, SkippedObjectsCountAtTheirFixedLevel) {
         for (std::size_t v = 0; v < counts.size(); ++v) {
             optimizer::Combination moved = combination;
             moved[v] = (moved[v] + 1) % counts[v];
-            EXPECT_NEAR(cost.deltaMs(combination, int(v), moved[v]),
-                        cost.predictMs(moved) - cost.predictMs(combination), 1e-12 * whole);
+            EXPECT_NEAR(cost.deltaMs(combination, int(v), moved[v]), cost.predictMs(moved) - cost.predictMs(combination),
+                        1e-12 * whole);
         }
     }
 }
@@ -302,13 +300,13 @@ TEST(TimeModelCost, PredictsThroughTheFeatureTable) {
     renderer::Renderer renderer(scene, settings(128));
     evaluation::ViewSetup setup(scene, scene.views[0], renderer);
     // 1 µs per triangle: predictions are the drawn triangle counts in ms / 1000.
-    evaluation::TimeModelCost cost(
-        setup, [](const timemodel::FrameFeatures& f) { return f[timemodel::Feature::kTriangles] * 1e-3; });
+    evaluation::TimeModelCost cost(setup, [](const timemodel::FrameFeatures& f) {
+        return f[timemodel::Feature::kTriangles] * 1e-3;
+    });
     const optimizer::Combination fine(setup.levelCounts().size(), 0);
     const scenes::Combination levels = setup.toScene(fine);
     double triangles = 0;
-    for (std::size_t o = 0; o < levels.size(); ++o)
-        triangles += double(scene.objects[o].levels[levels[o]].stats.triangles);
+    for (std::size_t o = 0; o < levels.size(); ++o) triangles += double(scene.objects[o].levels[levels[o]].stats.triangles);
     EXPECT_NEAR(cost.predictMs(fine), triangles * 1e-3, 1e-9);
     optimizer::Combination coarser = fine;
     coarser[0] = setup.levelCounts()[0] - 1;
@@ -330,8 +328,7 @@ TEST(TimeModelCost, DeltasFollowTheCombinationAndTheCostAsked) {
             if (counts.empty()) continue;
             // Not linear, so a stale "before" would show: (triangles / 1000)^1.5 + vertices / 5000.
             evaluation::TimeModelCost cost(setup, [](const timemodel::FrameFeatures& f) {
-                return std::pow(f[timemodel::Feature::kTriangles] * 1e-3, 1.5) +
-                       f[timemodel::Feature::kVertices] / 5000.0;
+                return std::pow(f[timemodel::Feature::kTriangles] * 1e-3, 1.5) + f[timemodel::Feature::kVertices] / 5000.0;
             });
             for (int k = 0; k < 20; ++k) {
                 const optimizer::Combination combination = randomCombination(counts, random);
@@ -353,10 +350,9 @@ TEST(TimeModelCost, DeltasFollowTheCombinationAndTheCostAsked) {
     std::vector<std::unique_ptr<evaluation::TimeModelCost>> costs;
     for (const scenes::Camera& camera : scene.views) {
         setups.push_back(std::make_unique<evaluation::ViewSetup>(scene, camera, renderer));
-        costs.push_back(
-            std::make_unique<evaluation::TimeModelCost>(*setups.back(), [](const timemodel::FrameFeatures& f) {
-                return std::sqrt(f[timemodel::Feature::kPixels] + f[timemodel::Feature::kTriangles]);
-            }));
+        costs.push_back(std::make_unique<evaluation::TimeModelCost>(*setups.back(), [](const timemodel::FrameFeatures& f) {
+            return std::sqrt(f[timemodel::Feature::kPixels] + f[timemodel::Feature::kTriangles]);
+        }));
     }
     int compared = 0;
     for (int pass = 0; pass < 2; ++pass) {
