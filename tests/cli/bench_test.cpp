@@ -2,12 +2,9 @@
 // fitness is the exhaustive optimum (harbor has 150 combinations); the fast path agrees with
 // the full path; progress goes to the terminal and never into --json stdout.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>

@@ -1,8 +1,6 @@
 // The lodopt executable: exit codes, JSON output, files written.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 

@@ -2,8 +2,6 @@
 // reads binary PNM, so the test needs no image library).
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -14,7 +12,7 @@
 
 namespace {
 
-using LodoptRun = lodopt::cli_test::CommandResult;
+using lodopt::cli_test::CommandResult;
 using lodopt::cli_test::runLodopt;
 
 class MetricsCli : public ::testing::Test {
@@ -53,7 +51,7 @@ protected:
 
 TEST_F(MetricsCli, JsonReportsEveryComponent) {
     const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
-    const LodoptRun run = runLodopt("metrics " + a + " " + b + " --json");
+    const CommandResult run = runLodopt("metrics " + a + " " + b + " --json");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     const nlohmann::json result = nlohmann::json::parse(run.output);
     for (const char* key : {"ssim", "boundary_entropy", "information_entropy"}) {
@@ -86,7 +84,7 @@ TEST_F(MetricsCli, IdenticalImagesScoreOne) {
 
 TEST_F(MetricsCli, WeightsSelectAndSkipComponents) {
     const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
-    const LodoptRun run = runLodopt("metrics " + a + " " + b + " --weights 1,0,0 --json");
+    const CommandResult run = runLodopt("metrics " + a + " " + b + " --weights 1,0,0 --json");
     ASSERT_EQ(run.exitCode, 0);
     const nlohmann::json result = nlohmann::json::parse(run.output);
     EXPECT_FALSE(result["boundary_entropy"]["computed"].get<bool>());
@@ -97,7 +95,7 @@ TEST_F(MetricsCli, WeightsSelectAndSkipComponents) {
 TEST_F(MetricsCli, GrayImagesAreUsedAsTheyAre) {
     const std::string a = write("a.pgm", 20, 20, 1, [](int x, int y, int) { return (x * 13 + y * 7) % 256; });
     const std::string b = write("b.pgm", 20, 20, 1, [](int x, int y, int) { return (x * 13 + y * 5) % 256; });
-    const LodoptRun run = runLodopt("metrics " + a + " " + b + " --json");
+    const CommandResult run = runLodopt("metrics " + a + " " + b + " --json");
     ASSERT_EQ(run.exitCode, 0);
     const nlohmann::json result = nlohmann::json::parse(run.output);
     EXPECT_EQ(result["channels"], 1);
@@ -106,7 +104,7 @@ TEST_F(MetricsCli, GrayImagesAreUsedAsTheyAre) {
 
 TEST_F(MetricsCli, TextOutputListsTheComponents) {
     const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
-    const LodoptRun run = runLodopt("metrics " + a + " " + b);
+    const CommandResult run = runLodopt("metrics " + a + " " + b);
     ASSERT_EQ(run.exitCode, 0);
     for (const char* word : {"ssim", "boundary_entropy", "information_entropy", "precision", "recall", "fitness"}) {
         EXPECT_NE(run.output.find(word), std::string::npos) << word;

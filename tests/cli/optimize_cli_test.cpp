@@ -1,8 +1,6 @@
 // lodopt optimize and compare end to end: files, fields, feasibility, determinism, errors.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -11,7 +9,7 @@
 
 namespace {
 
-using CommandRun = lodopt::cli_test::CommandResult;
+using lodopt::cli_test::CommandResult;
 using lodopt::cli_test::runLodopt;
 
 class OptimizeCli : public testing::Test {
@@ -38,8 +36,8 @@ const char* kSmall = " --scene harbor --size 128x128 --max-iterations 8 --quiet"
 
 TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
     const auto out = dir / "gapso";
-    CommandRun run = runLodopt(std::string("optimize") + kSmall + " --view ship_close --budget-ms 4 --seed 2 --out " +
-                               out.string() + " --json");
+    CommandResult run = runLodopt(std::string("optimize") + kSmall +
+                                  " --view ship_close --budget-ms 4 --seed 2 --out " + out.string() + " --json");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     nlohmann::json printed = nlohmann::json::parse(run.output);
     nlohmann::json result = readJson(out / "result.json");
@@ -78,7 +76,7 @@ TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
 TEST_F(OptimizeCli, BudgetBelowTheCheapestCombinationIsBadInputStatingTheMinimum) {
     const std::string command = std::string(LODOPT_EXECUTABLE) + " optimize" + kSmall + " --budget-ms 0.01 --out " +
                                 (dir / "none").string() + " 2>&1";
-    const CommandRun run = lodopt::cli_test::runShell(command);  // stdout and stderr
+    const CommandResult run = lodopt::cli_test::runShell(command);  // stdout and stderr
     EXPECT_EQ(run.exitCode, 2);
     EXPECT_NE(run.output.find("cheapest"), std::string::npos) << run.output;
     EXPECT_FALSE(std::filesystem::exists(dir / "none" / "result.json"));
@@ -87,7 +85,7 @@ TEST_F(OptimizeCli, BudgetBelowTheCheapestCombinationIsBadInputStatingTheMinimum
 TEST_F(OptimizeCli, SameSeedSameResultAcrossThreadCounts) {
     auto resultOf = [&](const std::string& name, const std::string& extra) {
         const auto out = dir / name;
-        CommandRun run =
+        CommandResult run =
             runLodopt(std::string("optimize") + kSmall + " --budget-ms 4.5 --seed 5 --out " + out.string() + extra);
         EXPECT_EQ(run.exitCode, 0);
         nlohmann::json result = readJson(out / "result.json");
@@ -104,9 +102,9 @@ TEST_F(OptimizeCli, SameSeedSameResultAcrossThreadCounts) {
 }
 
 TEST_F(OptimizeCli, FullEvaluationPathAgreesWithTheFastPath) {
-    CommandRun fast = runLodopt(std::string("optimize") + kSmall + " --algo exhaustive --budget-ms 4 --out " +
-                                (dir / "fast").string() + " --json");
-    CommandRun full =
+    CommandResult fast = runLodopt(std::string("optimize") + kSmall + " --algo exhaustive --budget-ms 4 --out " +
+                                   (dir / "fast").string() + " --json");
+    CommandResult full =
         runLodopt(std::string("optimize") + kSmall + " --algo exhaustive --eval full --budget-ms 4 --out " +
                   (dir / "full").string() + " --json");
     ASSERT_EQ(fast.exitCode, 0);
@@ -119,9 +117,9 @@ TEST_F(OptimizeCli, FullEvaluationPathAgreesWithTheFastPath) {
 
 TEST_F(OptimizeCli, CompareWritesATableForEveryAlgorithm) {
     const auto out = dir / "compare";
-    CommandRun run = runLodopt(std::string("compare") + kSmall +
-                               " --budget-ms 4 --algos gapso,pso,random,screensize --seeds 2 --evals 20 --out " +
-                               out.string() + " --json");
+    CommandResult run = runLodopt(std::string("compare") + kSmall +
+                                  " --budget-ms 4 --algos gapso,pso,random,screensize --seeds 2 --evals 20 --out " +
+                                  out.string() + " --json");
     ASSERT_EQ(run.exitCode, 0) << run.output;
     nlohmann::json table = nlohmann::json::parse(run.output);
     ASSERT_EQ(table["algorithms"].size(), 4u);

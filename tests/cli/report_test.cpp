@@ -3,11 +3,8 @@
 // installed); without gnuplot the page is still written; bad input exits with 2. Also the
 // page's building blocks (base64, escaping, CSV reading, difference maps) in-process.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>

@@ -1,12 +1,9 @@
 // lodopt calibrate / estimate: a tiny real calibration (seconds), predictions from its
 // profile and from the shipped one, and bad input mapped to exit code 2.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
