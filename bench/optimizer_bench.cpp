@@ -9,10 +9,11 @@
 // evaluation budgets for every algorithm, printed as markdown tables for docs/optimizer.md.
 //
 // Tuning (--sweep): GA-PSO with and without the stagnation kick on the harbor-shaped problem,
-// and a parameter grid on two synthetic instances.
+// and a parameter grid on two synthetic instances; (--fill) the budget fill's probability.
 //
 // Run: build-opt/bench/optimizer_bench --compare
 //      build-opt/bench/optimizer_bench --sweep
+//      build-opt/bench/optimizer_bench --fill
 //      build-opt/bench/optimizer_bench --benchmark_min_time=0.5
 #include <benchmark/benchmark.h>
 
@@ -70,6 +71,20 @@ void BM_RepairFinestToBudget(benchmark::State& state) {
 }
 BENCHMARK(BM_RepairFinestToBudget)->Args({30, 0})->Args({30, 1})->Args({100, 0})->Unit(benchmark::kMicrosecond);
 
+// The budget fill's longest walk: from all coarsest up to the budget.
+void BM_FillCoarsestToBudget(benchmark::State& state) {
+    SyntheticParameters parameters;
+    parameters.variables = static_cast<int>(state.range(0));
+    SyntheticProblem synthetic(parameters);
+    Problem problem = synthetic.problem();
+    if (state.range(1) != 0) problem.surrogateLoss = synthetic.additiveLoss();
+    for (auto _ : state) {
+        Combination combination = coarsestCombination(problem);
+        benchmark::DoNotOptimize(fillToBudget(problem, combination));
+    }
+}
+BENCHMARK(BM_FillCoarsestToBudget)->Args({30, 0})->Args({30, 1})->Args({100, 0})->Unit(benchmark::kMicrosecond);
+
 void BM_CheckedEvaluatorCacheHits(benchmark::State& state) {
     SyntheticProblem synthetic(SyntheticParameters{});
     const Problem problem = synthetic.problem();
@@ -83,22 +98,25 @@ void BM_CheckedEvaluatorCacheHits(benchmark::State& state) {
 }
 BENCHMARK(BM_CheckedEvaluatorCacheHits);
 
+// range(1): 0 = no budget fill, 1 = the default fill probability.
 void BM_GapsoRun(benchmark::State& state) {
     SyntheticProblem synthetic(SyntheticParameters{});
     const Problem problem = synthetic.problem();
     Termination termination = Termination::none();
     termination.maxEvaluations = state.range(0);
     termination.maxIterations = 100000;
+    GapsoParameters parameters;
+    if (state.range(1) == 0) parameters.fillProbability = 0.0;
     std::int64_t evaluations = 0;
     for (auto _ : state) {
-        const Result result = Gapso().run(problem, termination);
+        const Result result = Gapso(parameters).run(problem, termination);
         evaluations += result.evaluations;
     }
     state.counters["us/evaluation"] =
         benchmark::Counter(static_cast<double>(evaluations), benchmark::Counter::kIsRate | benchmark::Counter::kInvert,
                            benchmark::Counter::kIs1000);
 }
-BENCHMARK(BM_GapsoRun)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GapsoRun)->Args({1000, 0})->Args({1000, 1})->Unit(benchmark::kMillisecond);
 
 // ---- quality comparison -------------------------------------------------------------------
 
@@ -335,10 +353,83 @@ int sweep() {
     return 0;
 }
 
+// ---- GA-PSO budget fill (--fill) ------------------------------------------------------------
+
+// Fill probability 0 (before 2026-12-04), the default and every particle, on the harbor-shaped
+// problem and on synthetic instances 1-4 with and without the additive surrogate table (the CLI
+// always measures it; without it the fill takes the cheapest step first).
+int fillSweep() {
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    HarborEvaluator harborEvaluator;
+    const AdditiveCost harborCost(
+        0.5,
+        {{1.228, 0.822, 0.600, 0.450, 0.393}, {6.578, 6.013, 5.317, 3.341, 3.071}, {3.0, 2.4, 1.8, 1.2, 0.7, 0.3}});
+    Problem harbor;
+    harbor.levelCounts = {5, 5, 6};
+    harbor.evaluator = &harborEvaluator;
+    harbor.cost = &harborCost;
+    harbor.budgetMs = 8.0;
+    const Result truth = Exhaustive().run(harbor, Termination::none());
+    const std::vector<double> probabilities{0.0, 0.05, GapsoParameters{}.fillProbability, 0.3, 1.0};
+    std::printf("Harbor problem, budget 8 ms, 40 seeds, 30 iterations: optimum found\n\n| fill |");
+    for (double p : probabilities) std::printf(" %.2f |", p);
+    std::printf("\n|---|");
+    for (std::size_t k = 0; k < probabilities.size(); ++k) std::printf("---|");
+    std::printf("\n| found |");
+    for (double p : probabilities) {
+        int found = 0;
+        for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+            GapsoParameters parameters;
+            parameters.seed = seed;
+            parameters.fillProbability = p;
+            Termination termination = Termination::none();
+            termination.maxIterations = 30;
+            found += Gapso(parameters).run(harbor, termination).best == truth.best;
+        }
+        std::printf(" %d/40 |", found);
+    }
+    std::printf(
+        "\n\nSynthetic instances 1-4 (30 variables), GA-PSO defaults but the fill, median best fitness "
+        "of seeds 1-10:\n\n| instance | surrogate | evaluations |");
+    for (double p : probabilities) std::printf(" fill %.2f |", p);
+    std::printf("\n|---|---|---|");
+    for (std::size_t k = 0; k < probabilities.size(); ++k) std::printf("---|");
+    std::printf("\n");
+    for (std::uint64_t instanceSeed = 1; instanceSeed <= 4; ++instanceSeed) {
+        SyntheticParameters instanceParameters;
+        instanceParameters.seed = instanceSeed;
+        const SyntheticProblem instance(instanceParameters);
+        for (bool surrogate : {false, true}) {
+            Problem problem = instance.problem();
+            if (surrogate) problem.surrogateLoss = instance.additiveLoss();
+            for (std::int64_t budget : {500, 2000}) {
+                std::printf("| %llu | %s | %lld |", static_cast<unsigned long long>(instanceSeed),
+                            surrogate ? "yes" : "no", static_cast<long long>(budget));
+                for (double p : probabilities) {
+                    std::vector<double> best;
+                    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+                        GapsoParameters parameters;
+                        parameters.seed = seed;
+                        parameters.fillProbability = p;
+                        Termination termination = Termination::none();
+                        termination.maxEvaluations = budget;
+                        termination.maxIterations = kIterationCap;
+                        best.push_back(Gapso(parameters).run(problem, termination).bestScore.fitness);
+                    }
+                    std::printf(" %.4f |", median(best));
+                }
+                std::printf("\n");
+            }
+        }
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     for (int k = 1; k < argc; ++k) {
+        if (std::strcmp(argv[k], "--fill") == 0) return fillSweep();
         if (std::strcmp(argv[k], "--compare") == 0) return compare();
         if (std::strcmp(argv[k], "--sweep") == 0) return sweep();
     }

@@ -108,11 +108,21 @@ std::string runKey(const std::string& algorithm, std::uint64_t seed) {
 // thread count), so a run may be resumed with another one. --algos and --seeds may change
 // too: runs are matched by algorithm and seed.
 nlohmann::json checkpointIdentity(const OptimizeOptions& options, std::int64_t evaluations) {
-    return {{"scene", options.scene},         {"seed", options.seed},       {"view", options.view},
-            {"budget-ms", options.budgetMs},  {"evals", evaluations},       {"size", options.size},
-            {"eval", options.evalPath},       {"weights", options.weights}, {"profile", options.profile},
-            {"model", options.model},         {"paper", options.paper},     {"seed-from", options.seedFrom},
-            {"particles", options.particles}, {"max-seconds", options.maxSeconds}};
+    return {{"scene", options.scene},
+            {"seed", options.seed},
+            {"view", options.view},
+            {"budget-ms", options.budgetMs},
+            {"evals", evaluations},
+            {"size", options.size},
+            {"eval", options.evalPath},
+            {"weights", options.weights},
+            {"profile", options.profile},
+            {"model", options.model},
+            {"paper", options.paper},
+            {"seed-from", options.seedFrom},
+            {"particles", options.particles},
+            {"max-seconds", options.maxSeconds},
+            {"fill", effectiveFillProbability(options)}};
 }
 
 constexpr const char* kCheckpointFormat = "lodopt-compare-checkpoint/1";

@@ -73,6 +73,11 @@ void addOptimizeOptions(CLI::App& command, OptimizeOptions& options) {
         })
         ->capture_default_str();
     command.add_option("--particles", options.particles, "GA-PSO swarm size")->check(CLI::Range(1, 10000));
+    command
+        .add_option("--fill", options.fillProbability,
+                    "GA-PSO: probability per particle and evaluation of filling the unused budget (default 0.15, "
+                    "0 with --paper)")
+        ->check(CLI::Range(0.0, 1.0));
 }
 
 void addOptimizeCommand(CLI::App& app) {

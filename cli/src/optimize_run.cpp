@@ -109,6 +109,12 @@ optimizer::Termination terminationOf(const OptimizeOptions& options) {
 
 }  // namespace
 
+double effectiveFillProbability(const OptimizeOptions& options) {
+    if (options.fillProbability >= 0.0) return options.fillProbability;
+    return options.paper ? optimizer::GapsoParameters::paper().fillProbability
+                         : optimizer::GapsoParameters{}.fillProbability;
+}
+
 std::vector<std::string> seedAlgorithms(const std::string& seedFrom) {
     std::vector<std::string> names;
     if (seedFrom.empty() || seedFrom == "none") return names;
@@ -142,7 +148,7 @@ optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions
     const optimizer::Termination termination = terminationOf(options);
     const bool swarm = algorithm == "gapso" || algorithm == "pso" || algorithm == "ga";
     const std::vector<std::string> seeds = seedAlgorithms(options.seedFrom);
-    if (!swarm || (!options.paper && options.particles == 0 && seeds.empty())) {
+    if (!swarm || (!options.paper && options.particles == 0 && options.fillProbability < 0.0 && seeds.empty())) {
         return optimizer::makeAlgorithm(algorithm, seed)->run(problem, termination);
     }
     optimizer::GapsoParameters parameters =
@@ -151,6 +157,7 @@ optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions
     parameters.pso = algorithm != "ga";
     parameters.ga = algorithm != "pso";
     if (options.particles > 0) parameters.particles = options.particles;
+    parameters.fillProbability = effectiveFillProbability(options);
     optimizer::Result result;
     std::int64_t seedEvaluations = 0;
     for (const std::string& name : seeds) {
@@ -252,6 +259,9 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
                             ? nlohmann::json(seedAlgorithms(options.seedFrom))
                             : nlohmann::json::array()},
         {"seed", seed},
+        {"fill_probability", (algorithm == "gapso" || algorithm == "pso" || algorithm == "ga")
+                                 ? nlohmann::json(effectiveFillProbability(options))
+                                 : nlohmann::json(nullptr)},
         {"eval_path", options.evalPath},
         {"levels", levelMap},
         {"combination", levels},

@@ -48,7 +48,11 @@ struct OptimizeOptions {
     // are compared from the same random start.
     std::string seedFrom;
     int particles = 0;  // 0 = the algorithm's default
+    // GA-PSO's fill probability (GapsoParameters::fillProbability); < 0 = the default (0 with --paper).
+    double fillProbability = -1.0;
 };
+// The fill probability a swarm run with these options uses.
+double effectiveFillProbability(const OptimizeOptions& options);
 void addOptimizeOptions(CLI::App& command, OptimizeOptions& options);
 
 // The algorithms named by OptimizeOptions::seedFrom, in order, without repeats; throws

@@ -166,6 +166,7 @@ GapsoParameters GapsoParameters::paper(std::uint64_t seed) {
     parameters.social = 2.0;
     parameters.stagnationKick = false;
     parameters.windowedRoulette = false;
+    parameters.fillProbability = 0.0;
     parameters.seed = seed;
     return parameters;
 }
@@ -189,6 +190,7 @@ Gapso::Gapso(GapsoParameters parameters) : mParameters(std::move(parameters)) {
     }
     requireProbability(p.crossoverProbability, "crossoverProbability");
     requireProbability(p.mutationProbability, "mutationProbability");
+    requireProbability(p.fillProbability, "fillProbability");
     if (p.initialCombinations.size() > static_cast<std::size_t>(p.particles)) {
         throw std::invalid_argument("gapso: " + std::to_string(p.initialCombinations.size()) +
                                     " initialCombinations for " + std::to_string(p.particles) +
@@ -239,10 +241,11 @@ Result Gapso::run(const Problem& problem, const Termination& termination) const 
     std::vector<Combination> positions(count);
     std::vector<Score> scores(count);
     std::vector<double> predictedMs(count);
-    // Repairs, evaluates and updates the personal bests; returns the mean fitness.
+    // Repairs (and fills), evaluates and updates the personal bests; returns the mean fitness.
     auto evaluateSwarm = [&](bool first) {
         for (std::size_t k = 0; k < count; ++k) {
             repairToBudget(problem, swarm[k].position);
+            if (p.fillProbability > 0.0 && random.chance(p.fillProbability)) fillToBudget(problem, swarm[k].position);
             positions[k] = swarm[k].position;
         }
         const std::size_t scored = state.evaluate(positions, scores, predictedMs);

@@ -3,6 +3,8 @@
 
 #include <cassert>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 namespace lodopt::optimizer {
 
@@ -53,6 +55,48 @@ double repairToBudget(const Problem& problem, Combination& combination) {
         }
         ++combination[static_cast<std::size_t>(variable)];
         ms = cost.predictMs(combination);
+    }
+}
+
+double fillToBudget(const Problem& problem, Combination& combination) {
+    assert(combination.size() == problem.levelCounts.size());
+    const Cost& cost = *problem.cost;
+    const bool haveSurrogate = !problem.surrogateLoss.empty();
+    double ms = cost.predictMs(combination);
+    assert(ms <= problem.budgetMs);
+    // A step the additive prediction let in but the whole prediction did not is not retried.
+    std::vector<bool> blocked(combination.size(), false);
+    while (true) {
+        int best = -1;
+        double bestKey = 0.0;
+        double bestAdded = 0.0;
+        for (std::size_t i = 0; i < combination.size(); ++i) {
+            const int level = combination[i];
+            if (level == 0 || blocked[i]) continue;
+            const double added = cost.deltaMs(combination, static_cast<int>(i), level - 1);
+            if (!(ms + added <= problem.budgetMs)) continue;
+            const double gain = haveSurrogate ? problem.surrogateLoss[i][static_cast<std::size_t>(level)] -
+                                                    problem.surrogateLoss[i][static_cast<std::size_t>(level) - 1]
+                                              : 1.0;
+            if (!(gain > 0.0)) continue;
+            // Larger key = more fitness gained per millisecond spent; a free step first; on a
+            // tie the larger step, as repair takes the larger saving.
+            const double key = added > 0.0 ? gain / added : std::numeric_limits<double>::infinity();
+            if (best < 0 || key > bestKey || (key == bestKey && added > bestAdded)) {
+                best = static_cast<int>(i);
+                bestKey = key;
+                bestAdded = added;
+            }
+        }
+        if (best < 0) return ms;
+        --combination[static_cast<std::size_t>(best)];
+        const double next = cost.predictMs(combination);
+        if (!(next <= problem.budgetMs)) {
+            ++combination[static_cast<std::size_t>(best)];
+            blocked[static_cast<std::size_t>(best)] = true;
+            continue;
+        }
+        ms = next;
     }
 }
 

@@ -137,6 +137,27 @@ TEST_F(OptimizeCli, BadOptionsAreUsageErrors) {
     EXPECT_EQ(runLodopt("optimize --budget-ms 4 --weights 0,0,0").exitCode, 2);
     EXPECT_EQ(runLodopt("optimize --budget-ms 4 --weights a,b").exitCode, 2);
     EXPECT_EQ(runLodopt("optimize").exitCode, 2);  // --budget-ms is required
+    EXPECT_EQ(runLodopt("optimize --budget-ms 4 --fill 1.5 --out " + (dir / "x").string()).exitCode, 2);
+    EXPECT_EQ(runLodopt("optimize --budget-ms 4 --fill -0.1 --out " + (dir / "x").string()).exitCode, 2);
+}
+
+// result.json says which fill probability the swarm used: the default, --paper's 0, an
+// explicit --fill, and none for an algorithm without a swarm.
+TEST_F(OptimizeCli, ResultRecordsTheFillProbability) {
+    const std::string common = " --scene harbor --size 128x128 --quiet --max-iterations 2 --budget-ms 0.9";
+    auto fillOf = [&](const std::string& options) {
+        const std::filesystem::path out = dir / "fill";
+        const CommandResult run = runLodopt("optimize" + common + options + " --out " + out.string());
+        EXPECT_EQ(run.exitCode, 0) << options << "\n" << run.output;
+        const nlohmann::json result = readJson(out / "result.json");
+        EXPECT_LE(result["predicted_ms"].get<double>(), 0.9) << options;
+        return result["fill_probability"];
+    };
+    EXPECT_EQ(fillOf(""), nlohmann::json(0.15));
+    EXPECT_EQ(fillOf(" --paper"), nlohmann::json(0.0));
+    EXPECT_EQ(fillOf(" --fill 1 --seed-from none"), nlohmann::json(1.0));
+    EXPECT_EQ(fillOf(" --algo pso --fill 0.5"), nlohmann::json(0.5));
+    EXPECT_TRUE(fillOf(" --algo screensize").is_null());
 }
 
 // The default optimize starts its swarm from screensize's and mckp's answers, so on every

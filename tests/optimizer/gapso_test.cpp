@@ -38,6 +38,8 @@ TEST(Gapso, ParameterValidationNamesTheBadValue) {
     EXPECT_THAT(with([](auto& p) { p.selectionKeep = 1.5; }), HasSubstr("selectionKeep = 1.5"));
     EXPECT_THAT(with([](auto& p) { p.crossoverProbability = 2; }), HasSubstr("crossoverProbability = 2"));
     EXPECT_THAT(with([](auto& p) { p.mutationProbability = -0.1; }), HasSubstr("mutationProbability"));
+    EXPECT_THAT(with([](auto& p) { p.fillProbability = 1.5; }), HasSubstr("fillProbability = 1.5"));
+    EXPECT_THAT(with([](auto& p) { p.fillProbability = std::nan(""); }), HasSubstr("fillProbability"));
     EXPECT_THAT(with([](auto& p) { p.pso = p.ga = false; }), HasSubstr("both off"));
     EXPECT_THAT(with([](auto& p) { p.initialCombinations.assign(13, Combination{0}); }),
                 HasSubstr("13 initialCombinations for 12 particles"));
@@ -52,6 +54,10 @@ TEST(Gapso, PaperPresetIsThePublishedExperiment) {
     EXPECT_EQ(paper.cognitive, 2.0);
     EXPECT_EQ(paper.social, 2.0);
     EXPECT_EQ(paper.seed, 7u);
+    EXPECT_FALSE(paper.stagnationKick);
+    EXPECT_FALSE(paper.windowedRoulette);
+    EXPECT_EQ(paper.fillProbability, 0.0);
+    EXPECT_GT(GapsoParameters{}.fillProbability, 0.0);
     EXPECT_EQ(Termination::paper().maxIterations, 20);
     EXPECT_EQ(Termination::paper().stableIterations, 0);
 }
@@ -168,6 +174,41 @@ TEST(Gapso, PaperPresetStaysFeasibleAndReachesTheHarborOptimumSometimes) {
     }
     std::printf("[ harbor   ] gapso paper preset, 20 iterations: optimum found in %d of 10 seeds\n", found);
     EXPECT_GE(found, 1);
+}
+
+// With fillProbability 1 every evaluated particle is filled, so the answer has no refining
+// step left that fits the budget and gains surrogate fitness; without the fill, answers that
+// leave such a step are common on this instance (so the check can fail).
+TEST(Gapso, FillingEveryParticleLeavesNoProfitableStepInTheAnswer) {
+    SyntheticProblem synthetic(SyntheticParameters{});
+    Problem problem = synthetic.problem();
+    problem.surrogateLoss = synthetic.additiveLoss();
+    auto roomLeft = [&](const Combination& answer) {
+        const double ms = problem.cost->predictMs(answer);
+        for (std::size_t i = 0; i < answer.size(); ++i) {
+            const auto level = static_cast<std::size_t>(answer[i]);
+            if (level == 0) continue;
+            const bool gains = problem.surrogateLoss[i][level] - problem.surrogateLoss[i][level - 1] > 0.0;
+            if (gains && ms + problem.cost->deltaMs(answer, static_cast<int>(i), answer[i] - 1) <= problem.budgetMs)
+                return true;
+        }
+        return false;
+    };
+    int leftWithoutFill = 0;
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+        Termination termination = Termination::none();
+        termination.maxEvaluations = 300;
+        termination.maxIterations = 1000;
+        GapsoParameters parameters;
+        parameters.seed = seed;
+        parameters.fillProbability = 1.0;
+        const Result filled = Gapso(parameters).run(problem, termination);
+        EXPECT_LE(filled.predictedMs, problem.budgetMs);
+        EXPECT_FALSE(roomLeft(filled.best)) << "seed " << seed << ": " << formatCombination(filled.best);
+        parameters.fillProbability = 0.0;
+        leftWithoutFill += roomLeft(Gapso(parameters).run(problem, termination).best);
+    }
+    EXPECT_GT(leftWithoutFill, 0);
 }
 
 TEST(Gapso, InitialCombinationsSeedTheSwarm) {

@@ -18,8 +18,14 @@
 //      the global best would only hit the cache, so one random variable changes level, and a
 //      second with probability 1/2; without it the discrete swarm collapses onto the best in a
 //      few iterations and stops exploring (docs/optimizer.md has the measurements);
-//   5. repair to the budget (repair.hpp; the repaired levels are written back), evaluate the
-//      swarm as one batch, update personal and global bests.
+//   5. repair to the budget (repair.hpp; the repaired levels are written back); then, with
+//      probability fillProbability per particle (our addition), fill the budget: refine the
+//      levels that gain most surrogate fitness per millisecond while they fit (fillToBudget,
+//      written back); evaluate the swarm as one batch, update personal and global bests.
+//      Why: a particle moved by the swarm often leaves part of the budget unused, and the
+//      rounding of PSO and crossover rarely lands exactly on the budget's edge, where good
+//      combinations are; filling every particle, though, makes them all the same greedy
+//      completion and the swarm collapses (docs/optimizer.md has both measurements).
 // The paper applies PSO, then selection, crossover and mutation, then evaluates. Selection
 // needs fitness, and only the positions before the move have one, so we select first; and
 // crossover and mutation stay after the move so that the move does not pull their changes
@@ -57,13 +63,14 @@ struct GapsoParameters {
     double mutationProbability = 0.15;   // [0, 1], per particle
     bool stagnationKick = true;          // perturb particles that sit on the global best
     bool windowedRoulette = true;        // selection weights F - min F (+5% of range); paper: F
+    double fillProbability = 0.15;       // [0, 1], per particle and evaluation: fill the budget
     std::uint64_t seed = 1;
     // Optional starting particles (e.g. the mckp solution for "--seed-from mckp"), at most
     // `particles`, repaired to the budget; the other particles start uniformly at random.
     // Checked against the problem in run() (ProblemError).
     std::vector<Combination> initialCombinations;
 
-    // GAPSO15's experiment: c1 = c2 = 2, w = 1, 3 particles, no stagnation kick (use
+    // GAPSO15's experiment: c1 = c2 = 2, w = 1, 3 particles, no stagnation kick, no fill (use
     // Termination::paper()). The velocity clamp stays: without it w = 1, c = 2 diverges.
     static GapsoParameters paper(std::uint64_t seed = 1);
 };

@@ -1,4 +1,5 @@
-// Feasibility repair: make an over-budget combination fit by coarsening levels.
+// Feasibility repair: make an over-budget combination fit by coarsening levels; and the budget
+// fill, which spends what a combination leaves unused by refining them.
 //
 // Rule (docs/optimizer.md, "Repair"): while predictMs > budgetMs, lower by one step (coarser,
 // level + 1) the variable whose step loses least fitness per millisecond saved:
@@ -19,5 +20,18 @@ namespace lodopt::optimizer {
 // Repairs `combination` in place and returns its predicted milliseconds (<= budgetMs).
 // A feasible combination is left unchanged. `combination` must be valid and `problem` validated.
 double repairToBudget(const Problem& problem, Combination& combination);
+
+// Budget fill, the opposite of repair (the ADD phase of Chu & Beasley's repair operator for
+// knapsack GAs, J. Heuristics 4, 1998): while some variable can be refined by one step
+// (level - 1) within the budget, refine the one that gains most fitness per millisecond spent:
+//   - with a surrogate table the gain is surrogateLoss[i][l] - surrogateLoss[i][l-1], and a
+//     step whose gain is not > 0 is never taken;
+//   - without one every step gains the same, so the cheapest step goes first.
+// addedMs = Cost::deltaMs; a step that adds nothing goes first. Ties: the larger addedMs, then
+// the lower index. A step that the delta lets in but the whole prediction puts over the budget
+// (a non-additive model) is undone and that variable left alone. Levels only decrease, so it
+// ends. `combination` must be valid and fit the budget; returns its predicted milliseconds
+// (<= budgetMs).
+double fillToBudget(const Problem& problem, Combination& combination);
 
 }  // namespace lodopt::optimizer
