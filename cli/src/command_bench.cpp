@@ -98,6 +98,7 @@ nlohmann::json checkpointIdentity(const BenchOptions& bench) {
             {"weights", o.weights},
             {"profile", o.profile},
             {"model", o.model},
+            {"fill", effectiveFillProbability(o)},  // GA-PSO's default; bench has no --fill
             {"exhaustive-limit", bench.exhaustiveLimit},
             {"candidates", bench.candidates},
             {"metrics-seconds", bench.metricsSeconds},

@@ -215,6 +215,10 @@ TEST_F(Robustness, CompareResumeRefusesADifferentRunOrABrokenCheckpoint) {
     const Exit changed = runLodopt(split(other + out.string() + mProfile + " --resume"), mDir);
     EXPECT_EQ(changed.code, 2);
     EXPECT_NE(changed.err.find("--budget-ms"), std::string::npos) << changed.err;
+    // The fill probability changes GA-PSO's runs, so it is part of the identity too.
+    const Exit filled = runLodopt(split(kCompare + out.string() + mProfile + " --fill 0.5 --resume"), mDir);
+    EXPECT_EQ(filled.code, 2);
+    EXPECT_NE(filled.err.find("--fill"), std::string::npos) << filled.err;
 
     std::ofstream(checkpoint) << saved.substr(0, saved.size() / 2);
     const Exit broken = runLodopt(split(kCompare + out.string() + mProfile + " --resume"), mDir);
