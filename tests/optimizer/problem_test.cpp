@@ -1,4 +1,4 @@
-// Problem validation, the additive cost, the checked evaluator and repair.
+// Problem validation, the additive cost, the checked evaluator and repair (the fill: fill_test.cpp).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -209,79 +209,6 @@ TEST(Repair, NonAdditiveCostStillEndsFeasible) {
         EXPECT_LE(ms, 7.0) << formatCombination(start);
         EXPECT_DOUBLE_EQ(ms, cost.predictMs(combination));
         for (std::size_t i = 0; i < 3; ++i) EXPECT_GE(combination[i], start[i]);  // levels only coarsen
-    }
-}
-
-TEST(Fill, LeavesACombinationWithNoRoomAlone) {
-    HandProblem hand;
-    const Problem problem = hand.problem();
-    Combination combination{0, 1, 1};  // 8 ms of 8
-    EXPECT_DOUBLE_EQ(fillToBudget(problem, combination), 8.0);
-    EXPECT_EQ(combination, (Combination{0, 1, 1}));
-}
-
-TEST(Fill, WithoutSurrogateRefinesTheCheapestStep) {
-    HandProblem hand;
-    const Problem problem = hand.problem(8.0);
-    // All coarsest: 4 ms. Steps cost A 1, B 3, C 1 → A (tie with C, lower index): 5 ms; then
-    // A 2, B 3, C 1 → C: 6 ms; then A 2, B 3, C 1 → C: 7 ms; then A 2 and B 3 do not fit.
-    Combination combination{2, 1, 2};
-    EXPECT_DOUBLE_EQ(fillToBudget(problem, combination), 7.0);
-    EXPECT_EQ(combination, (Combination{1, 1, 0}));
-}
-
-TEST(Fill, WithSurrogateRefinesTheMostGainPerMillisecond) {
-    HandProblem hand;
-    Problem problem = hand.problem(8.0);
-    problem.surrogateLoss = hand.evaluator.loss();
-    // Gain per ms from all coarsest (4 ms): A .25/1, B .25/3, C .1875/1 → A: 5 ms; then
-    // A .125/2, B .25/3, C .1875/1 → C: 6 ms; then A .0625 (2 ms), B no room, C .0625 (1 ms):
-    // a tie, the larger step A: 8 ms. The hand optimum, where cheapest-first stopped at 7 ms.
-    Combination combination{2, 1, 2};
-    EXPECT_DOUBLE_EQ(fillToBudget(problem, combination), 8.0);
-    EXPECT_EQ(combination, (Combination{0, 1, 1}));
-    EXPECT_DOUBLE_EQ(hand.evaluator.evaluate(combination).fitness, 0.6875);
-}
-
-TEST(Fill, NeverTakesAStepTheSurrogateSaysGainsNothing) {
-    HandProblem hand;
-    Problem problem = hand.problem(12.0);  // everything at level 0 fits
-    problem.surrogateLoss = {{0.0, 0.0, 0.375}, {0.0, 0.25}, {0.0, 0.0625, 0.0625}};
-    Combination combination{2, 1, 2};
-    // A's 1 → 0 and C's 2 → 1 gain nothing by the table, so A stops at 1 and C stays coarsest
-    // (its gaining step 1 → 0 lies behind the empty one); B's step is taken.
-    EXPECT_DOUBLE_EQ(fillToBudget(problem, combination), 2.0 + 5.0 + 1.0);
-    EXPECT_EQ(combination, (Combination{1, 0, 2}));
-}
-
-TEST(Fill, NonAdditiveCostNeverEndsOverBudget) {
-    TableEvaluator evaluator({{0, 0.1, 0.2}, {0, 0.1, 0.2}, {0, 0.1, 0.2}});
-    // GPU-bound at fine levels, CPU-bound at coarse ones: a step's delta is not what the
-    // whole prediction adds once the other bound takes over.
-    const MaxCost cost(1.0, {{6, 3, 1}, {6, 3, 1}, {6, 3, 1}}, {{1, 1, 1}, {1, 2, 4}, {1, 1, 1}});
-    Problem problem;
-    problem.levelCounts = {3, 3, 3};
-    problem.evaluator = &evaluator;
-    problem.cost = &cost;
-    for (double budget : {7.0, 9.0, 12.0, 19.0}) {
-        problem.budgetMs = budget;
-        ASSERT_NO_THROW(validateProblem(problem));
-        for (const Combination& start : {Combination{2, 2, 2}, Combination{2, 0, 2}, Combination{1, 2, 1}}) {
-            Combination combination = start;
-            if (cost.predictMs(combination) > budget) continue;
-            const double ms = fillToBudget(problem, combination);
-            EXPECT_LE(ms, budget) << formatCombination(start);
-            EXPECT_DOUBLE_EQ(ms, cost.predictMs(combination));
-            for (std::size_t i = 0; i < 3; ++i) EXPECT_LE(combination[i], start[i]);  // levels only refine
-            // Nothing left that fits: every remaining single step would go over.
-            for (std::size_t i = 0; i < 3; ++i) {
-                if (combination[i] == 0) continue;
-                Combination finer = combination;
-                --finer[i];
-                EXPECT_GT(cost.predictMs(finer), budget)
-                    << formatCombination(start) << " → " << formatCombination(combination);
-            }
-        }
     }
 }
 
