@@ -31,9 +31,8 @@ double repairToBudget(const Problem& problem, Combination& combination);
 // the lower index. A step that the delta lets in but the whole prediction puts over the budget
 // (a non-additive model) is undone and that variable left alone. Levels only decrease, so it
 // ends. Steps are kept in a heap and re-asked lazily: exactly these choices when a variable's
-// deltaMs does not depend on the others' levels, close to them otherwise. `combination` must be valid and fit the
-// budget; returns its predicted milliseconds
-// (<= budgetMs).
+// deltaMs does not depend on the others' levels, close to them otherwise. `combination` must
+// be valid and fit the budget; returns its predicted milliseconds (<= budgetMs).
 double fillToBudget(const Problem& problem, Combination& combination);
 
 }  // namespace lodopt::optimizer
