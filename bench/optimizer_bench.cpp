@@ -58,12 +58,24 @@ void BM_SolveMckp(benchmark::State& state) {
 }
 BENCHMARK(BM_SolveMckp)->Args({30, 5})->Args({100, 6})->Args({1000, 6})->Unit(benchmark::kMillisecond);
 
+// Repair and fill benchmarks: range(0) variables, with the surrogate table when range(1) != 0.
+struct RepairBench {
+    explicit RepairBench(const benchmark::State& state)
+        : synthetic([&] {
+              SyntheticParameters parameters;
+              parameters.variables = static_cast<int>(state.range(0));
+              return parameters;
+          }()),
+          problem(synthetic.problem()) {
+        if (state.range(1) != 0) problem.surrogateLoss = synthetic.additiveLoss();
+    }
+    SyntheticProblem synthetic;
+    Problem problem;  // points into synthetic
+};
+
 void BM_RepairFinestToBudget(benchmark::State& state) {
-    SyntheticParameters parameters;
-    parameters.variables = static_cast<int>(state.range(0));
-    SyntheticProblem synthetic(parameters);
-    Problem problem = synthetic.problem();
-    if (state.range(1) != 0) problem.surrogateLoss = synthetic.additiveLoss();
+    const RepairBench bench(state);
+    const Problem& problem = bench.problem;
     for (auto _ : state) {
         Combination combination(problem.levelCounts.size(), 0);
         benchmark::DoNotOptimize(repairToBudget(problem, combination));
@@ -73,11 +85,8 @@ BENCHMARK(BM_RepairFinestToBudget)->Args({30, 0})->Args({30, 1})->Args({100, 0})
 
 // The budget fill's longest walk: from all coarsest up to the budget.
 void BM_FillCoarsestToBudget(benchmark::State& state) {
-    SyntheticParameters parameters;
-    parameters.variables = static_cast<int>(state.range(0));
-    SyntheticProblem synthetic(parameters);
-    Problem problem = synthetic.problem();
-    if (state.range(1) != 0) problem.surrogateLoss = synthetic.additiveLoss();
+    const RepairBench bench(state);
+    const Problem& problem = bench.problem;
     for (auto _ : state) {
         Combination combination = coarsestCombination(problem);
         benchmark::DoNotOptimize(fillToBudget(problem, combination));
@@ -268,18 +277,43 @@ public:
     }
 };
 
+// Median best fitness of GA-PSO with `parameters` over seeds 1-10 at `evaluations` evaluations.
+double medianOverSeeds(GapsoParameters parameters, const Problem& problem, std::int64_t evaluations) {
+    std::vector<double> best;
+    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+        parameters.seed = seed;
+        Termination termination = Termination::none();
+        termination.maxEvaluations = evaluations;
+        termination.maxIterations = kIterationCap;
+        best.push_back(Gapso(parameters).run(problem, termination).bestScore.fitness);
+    }
+    return median(best);
+}
+
+// The harbor-shaped problem with GAPSO15's polygon costs at an 8 ms budget, and its optimum.
+struct HarborBench {
+    HarborEvaluator evaluator;
+    AdditiveCost cost{
+        0.5,
+        {{1.228, 0.822, 0.600, 0.450, 0.393}, {6.578, 6.013, 5.317, 3.341, 3.071}, {3.0, 2.4, 1.8, 1.2, 0.7, 0.3}}};
+    Problem problem;
+    Result truth;
+    HarborBench() {
+        problem.levelCounts = {5, 5, 6};
+        problem.evaluator = &evaluator;
+        problem.cost = &cost;
+        problem.budgetMs = 8.0;
+        truth = Exhaustive().run(problem, Termination::none());
+    }
+    HarborBench(const HarborBench&) = delete;  // problem points into it
+    HarborBench& operator=(const HarborBench&) = delete;
+};
+
 int sweep() {
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
-    HarborEvaluator harborEvaluator;
-    const AdditiveCost harborCost(
-        0.5,
-        {{1.228, 0.822, 0.600, 0.450, 0.393}, {6.578, 6.013, 5.317, 3.341, 3.071}, {3.0, 2.4, 1.8, 1.2, 0.7, 0.3}});
-    Problem harbor;
-    harbor.levelCounts = {5, 5, 6};
-    harbor.evaluator = &harborEvaluator;
-    harbor.cost = &harborCost;
-    harbor.budgetMs = 8.0;
-    const Result truth = Exhaustive().run(harbor, Termination::none());
+    HarborBench bench;
+    const Problem& harbor = bench.problem;
+    const Result& truth = bench.truth;
     std::printf("Harbor problem, budget 8 ms: optimum %s fitness %.4f; 40 seeds, 30 iterations\n\n",
                 formatCombination(truth.best).c_str(), truth.bestScore.fitness);
     std::printf("| parameters | kick | optimum found | mean evaluations |\n|---|---|---|---|\n");
@@ -318,15 +352,7 @@ int sweep() {
         for (const auto& instance : instances) {
             const Problem problem = instance->problem();
             for (std::int64_t budget : {500, 2000}) {
-                std::vector<double> best;
-                for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-                    parameters.seed = seed;
-                    Termination termination = Termination::none();
-                    termination.maxEvaluations = budget;
-                    termination.maxIterations = kIterationCap;
-                    best.push_back(Gapso(parameters).run(problem, termination).bestScore.fitness);
-                }
-                std::printf(" %.4f |", median(best));
+                std::printf(" %.4f |", medianOverSeeds(parameters, problem, budget));
             }
         }
         std::printf("\n");
@@ -360,16 +386,9 @@ int sweep() {
 // always measures it; without it the fill takes the cheapest step first).
 int fillSweep() {
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
-    HarborEvaluator harborEvaluator;
-    const AdditiveCost harborCost(
-        0.5,
-        {{1.228, 0.822, 0.600, 0.450, 0.393}, {6.578, 6.013, 5.317, 3.341, 3.071}, {3.0, 2.4, 1.8, 1.2, 0.7, 0.3}});
-    Problem harbor;
-    harbor.levelCounts = {5, 5, 6};
-    harbor.evaluator = &harborEvaluator;
-    harbor.cost = &harborCost;
-    harbor.budgetMs = 8.0;
-    const Result truth = Exhaustive().run(harbor, Termination::none());
+    HarborBench bench;
+    const Problem& harbor = bench.problem;
+    const Result& truth = bench.truth;
     const std::vector<double> probabilities{0.0, 0.05, GapsoParameters{}.fillProbability, 0.3, 1.0};
     std::printf("Harbor problem, budget 8 ms, 40 seeds, 30 iterations: optimum found\n\n| fill |");
     for (double p : probabilities) std::printf(" %.2f |", p);
@@ -406,17 +425,9 @@ int fillSweep() {
                 std::printf("| %llu | %s | %lld |", static_cast<unsigned long long>(instanceSeed),
                             surrogate ? "yes" : "no", static_cast<long long>(budget));
                 for (double p : probabilities) {
-                    std::vector<double> best;
-                    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-                        GapsoParameters parameters;
-                        parameters.seed = seed;
-                        parameters.fillProbability = p;
-                        Termination termination = Termination::none();
-                        termination.maxEvaluations = budget;
-                        termination.maxIterations = kIterationCap;
-                        best.push_back(Gapso(parameters).run(problem, termination).bestScore.fitness);
-                    }
-                    std::printf(" %.4f |", median(best));
+                    GapsoParameters parameters;
+                    parameters.fillProbability = p;
+                    std::printf(" %.4f |", medianOverSeeds(parameters, problem, budget));
                 }
                 std::printf("\n");
             }
