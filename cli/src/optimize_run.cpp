@@ -109,6 +109,10 @@ optimizer::Termination terminationOf(const OptimizeOptions& options) {
 
 }  // namespace
 
+bool isSwarmAlgorithm(const std::string& algorithm) {
+    return algorithm == "gapso" || algorithm == "pso" || algorithm == "ga";
+}
+
 double effectiveFillProbability(const OptimizeOptions& options) {
     if (options.fillProbability >= 0.0) return options.fillProbability;
     return options.paper ? optimizer::GapsoParameters::paper().fillProbability
@@ -146,7 +150,7 @@ optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions
         return result;
     }
     const optimizer::Termination termination = terminationOf(options);
-    const bool swarm = algorithm == "gapso" || algorithm == "pso" || algorithm == "ga";
+    const bool swarm = isSwarmAlgorithm(algorithm);
     const std::vector<std::string> seeds = seedAlgorithms(options.seedFrom);
     if (!swarm || (!options.paper && options.particles == 0 && options.fillProbability < 0.0 && seeds.empty())) {
         return optimizer::makeAlgorithm(algorithm, seed)->run(problem, termination);
@@ -255,13 +259,11 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
         {"scene", scene.name},
         {"view", setup.camera().name},
         {"algorithm", algorithm},
-        {"seeded_from", (algorithm == "gapso" || algorithm == "pso" || algorithm == "ga")
-                            ? nlohmann::json(seedAlgorithms(options.seedFrom))
-                            : nlohmann::json::array()},
+        {"seeded_from",
+         isSwarmAlgorithm(algorithm) ? nlohmann::json(seedAlgorithms(options.seedFrom)) : nlohmann::json::array()},
         {"seed", seed},
-        {"fill_probability", (algorithm == "gapso" || algorithm == "pso" || algorithm == "ga")
-                                 ? nlohmann::json(effectiveFillProbability(options))
-                                 : nlohmann::json(nullptr)},
+        {"fill_probability",
+         isSwarmAlgorithm(algorithm) ? nlohmann::json(effectiveFillProbability(options)) : nlohmann::json(nullptr)},
         {"eval_path", options.evalPath},
         {"levels", levelMap},
         {"combination", levels},

@@ -53,6 +53,8 @@ struct OptimizeOptions {
 };
 // The fill probability a swarm run with these options uses.
 double effectiveFillProbability(const OptimizeOptions& options);
+// gapso, pso or ga: the algorithms that --seed-from, --particles and --fill apply to.
+bool isSwarmAlgorithm(const std::string& algorithm);
 void addOptimizeOptions(CLI::App& command, OptimizeOptions& options);
 
 // The algorithms named by OptimizeOptions::seedFrom, in order, without repeats; throws
