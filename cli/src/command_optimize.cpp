@@ -73,11 +73,15 @@ void addOptimizeOptions(CLI::App& command, OptimizeOptions& options) {
         })
         ->capture_default_str();
     command.add_option("--particles", options.particles, "GA-PSO swarm size")->check(CLI::Range(1, 10000));
-    command
-        .add_option("--fill", options.fillProbability,
-                    "GA-PSO: probability per particle and evaluation of filling the unused budget (default 0.15, "
-                    "0 with --paper)")
-        ->check(CLI::Range(0.0, 1.0));
+    addFillOption(command, options);
+}
+
+void addFillOption(CLI::App& command, OptimizeOptions& options) {
+    std::ostringstream help;
+    help << "GA-PSO: probability per particle and evaluation of filling the unused budget (default "
+         << optimizer::GapsoParameters{}.fillProbability
+         << "; the paper's settings: " << optimizer::GapsoParameters::paper().fillProbability << ")";
+    command.add_option("--fill", options.fillProbability, help.str())->check(CLI::Range(0.0, 1.0));
 }
 
 void addOptimizeCommand(CLI::App& app) {

@@ -508,10 +508,7 @@ void addTuneCommand(CLI::App& app) {
     command->add_option("--evals", o.maxEvaluations, "Optimizer evaluation budget per view")
         ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 40))
         ->capture_default_str();
-    command
-        ->add_option("--fill", o.fillProbability,
-                     "GA-PSO: probability per particle and evaluation of filling the unused budget (default 0.15)")
-        ->check(CLI::Range(0.0, 1.0));
+    addFillOption(*command, o);
     command->add_option("--max-iterations", o.maxIterations, "Optimizer iterations per view")
         ->check(CLI::Range(0, 1000000))
         ->capture_default_str();

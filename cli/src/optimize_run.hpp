@@ -56,6 +56,8 @@ double effectiveFillProbability(const OptimizeOptions& options);
 // gapso, pso or ga: the algorithms that --seed-from, --particles and --fill apply to.
 bool isSwarmAlgorithm(const std::string& algorithm);
 void addOptimizeOptions(CLI::App& command, OptimizeOptions& options);
+// --fill alone (tune takes it without the other optimize options); its help names the defaults.
+void addFillOption(CLI::App& command, OptimizeOptions& options);
 
 // The algorithms named by OptimizeOptions::seedFrom, in order, without repeats; throws
 // UsageError for a name that is not mckp, greedy or screensize.

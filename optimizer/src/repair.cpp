@@ -9,6 +9,15 @@
 
 namespace lodopt::optimizer {
 
+namespace {
+
+// Surrogate fitness lost by the step of `variable` from level `finer` to finer + 1.
+double surrogateStepLoss(const Problem& problem, std::size_t variable, std::size_t finer) {
+    return problem.surrogateLoss[variable][finer + 1] - problem.surrogateLoss[variable][finer];
+}
+
+}  // namespace
+
 double repairToBudget(const Problem& problem, Combination& combination) {
     assert(combination.size() == problem.levelCounts.size());
     const Cost& cost = *problem.cost;
@@ -37,10 +46,8 @@ double repairToBudget(const Problem& problem, Combination& combination) {
             }
             if (!(saved > 0.0)) continue;
             // Smaller key = less fitness lost per millisecond saved.
-            const double key = haveSurrogate ? (problem.surrogateLoss[i][static_cast<std::size_t>(level) + 1] -
-                                                problem.surrogateLoss[i][static_cast<std::size_t>(level)]) /
-                                                   saved
-                                             : -saved;
+            const double key =
+                haveSurrogate ? surrogateStepLoss(problem, i, static_cast<std::size_t>(level)) / saved : -saved;
             if (bestSaving < 0 || key < bestKey || (key == bestKey && saved > bestSaved)) {
                 bestSaving = static_cast<int>(i);
                 bestKey = key;
@@ -77,13 +84,13 @@ bool worseStep(const FillStep& a, const FillStep& b) {
 }  // namespace
 
 // The rule is a loop that, each round, asks every variable for its step and takes the best that
-// fits: O(n) cost questions per step, and each question is O(n) for a cost that sums the whole
-// combination (the evaluation module's), which made fills a third of a search on a 583-object
-// view. This is the same greedy with a heap of steps checked lazily: a popped step is asked
-// again and put back when its answer changed (a cost whose steps depend on other variables);
-// a step that does not fit is set aside until a taken step lowers the prediction. For a cost
-// whose steps do not depend on the other variables (AdditiveCost; the time model's linear
-// features) the choices are those of the loop, which the tests check against a copy of it.
+// fits: O(n) cost questions per step, and each question is O(n) for a cost that keys a memo by
+// the whole combination (the evaluation module's). This is the same greedy with a heap of steps
+// checked lazily: a popped step is asked again and put back when its answer changed (a cost
+// whose steps depend on other variables); a step that does not fit is set aside until a taken
+// step lowers the prediction. For a cost whose steps do not depend on the other variables
+// (AdditiveCost; the time model's linear features) the choices are those of the loop, which
+// the tests check against a copy of it.
 double fillToBudget(const Problem& problem, Combination& combination) {
     assert(combination.size() == problem.levelCounts.size());
     const Cost& cost = *problem.cost;
@@ -95,9 +102,8 @@ double fillToBudget(const Problem& problem, Combination& combination) {
     auto stepOf = [&](int variable, FillStep& step) {
         const auto level = static_cast<std::size_t>(combination[static_cast<std::size_t>(variable)]);
         if (level == 0) return false;
-        const double gain = haveSurrogate ? problem.surrogateLoss[static_cast<std::size_t>(variable)][level] -
-                                                problem.surrogateLoss[static_cast<std::size_t>(variable)][level - 1]
-                                          : 1.0;
+        const double gain =
+            haveSurrogate ? surrogateStepLoss(problem, static_cast<std::size_t>(variable), level - 1) : 1.0;
         if (!(gain > 0.0)) return false;
         step.added = cost.deltaMs(combination, variable, static_cast<int>(level) - 1);
         step.key = step.added > 0.0 ? gain / step.added : std::numeric_limits<double>::infinity();
