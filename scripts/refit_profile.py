@@ -17,7 +17,7 @@ import numpy as np
 
 DEFAULT = ['vertices', 'triangles', 'texture_bytes', 'draw_calls', 'pixels', 'drawn_objects',
            'visible_triangles', 'raster_pixels', 'edge_pixels', 'shaded_pixels', 'textured_pixels',
-           'shaded_edge_pixels']
+           'shaded_edge_pixels', 'partial_blocks', 'shaded_partial_blocks']
 
 
 def nnls(a, b, sweeps=3000):

@@ -175,6 +175,36 @@ TEST(RasterFeatures, OneTriangleByHand) {
     EXPECT_NEAR(f.edgePixels, 100.0 + 50.0 * std::sqrt(2.0), 0.5);
 }
 
+namespace {
+
+// One triangle given in pixels of a 64 x 64 viewport, through an identity projection (NDC =
+// position): pixel p lies at p / 32 - 1.
+timemodel::RasterFeatures pixelTriangle(glm::vec2 a, glm::vec2 b, glm::vec2 c) {
+    scenes::Mesh mesh;
+    for (glm::vec2 p : {a, b, c}) mesh.positions.push_back({p.x / 32.0f - 1.0f, p.y / 32.0f - 1.0f, 0.0f});
+    mesh.normals.assign(3, glm::vec3(0, 0, 1));
+    mesh.indices = {0, 1, 2};
+    return timemodel::rasterFeatures({mesh}, glm::mat4(1.0f), 64, 64);
+}
+
+}  // namespace
+
+TEST(RasterFeatures, PartialBlocksByHand) {
+    // Legs on block lines, hypotenuse through block corners: only the 4 diagonal blocks are
+    // partly covered (the 6 below them are whole).
+    EXPECT_DOUBLE_EQ(pixelTriangle({8, 8}, {24, 8}, {8, 24}).partialBlocks, 4.0);
+    // A sliver one pixel high across 48 pixels: 13 blocks of one row, each partly covered,
+    // though its edges are 97 pixels long (both long edges cross the same blocks).
+    const timemodel::RasterFeatures sliver = pixelTriangle({8.5f, 9}, {56.5f, 9}, {56.5f, 10});
+    EXPECT_DOUBLE_EQ(sliver.partialBlocks, 13.0);
+    EXPECT_NEAR(sliver.edgePixels, 48.0 + 1.0 + std::sqrt(48.0 * 48.0 + 1.0), 1e-3);
+    // Clipped to the viewport, a triangle larger than it covers every block whole.
+    EXPECT_DOUBLE_EQ(pixelTriangle({-100, -100}, {300, -100}, {-100, 300}).partialBlocks, 0.0);
+    // Moved by one pixel off the block lines, its legs cut blocks too: per block row from the
+    // bottom 5, 3, 3, 2 and 1 (one block of the second row is whole).
+    EXPECT_DOUBLE_EQ(pixelTriangle({9, 9}, {25, 9}, {9, 25}).partialBlocks, 14.0);
+}
+
 TEST(RasterFeatures, TrianglesOutsideTheFrustumAreNotVisible) {
     scenes::Mesh mesh;
     mesh.positions = {{0, 0, 2},    {1, 0, 2},   {0, 1, 2},    // behind the camera

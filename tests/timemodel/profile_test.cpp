@@ -26,6 +26,10 @@ timemodel::DeviceProfile sampleProfile() {
         s.features[timemodel::Feature::kTextureBytes] = rng.between(0.0, 1e6);
         s.features[timemodel::Feature::kPixels] = rng.between(1e3, 1e5);
         s.features[timemodel::Feature::kDrawCalls] = 1.0 + double(i % 5);
+        // Nonzero, so that reading a file without them shows as zeros.
+        for (timemodel::Feature later : {timemodel::Feature::kTexturedPixels, timemodel::Feature::kShadedEdgePixels,
+                                         timemodel::Feature::kPartialBlocks, timemodel::Feature::kShadedPartialBlocks})
+            s.features[later] = rng.between(1.0, 1e3);
         s.measuredMs =
             0.3 + 2e-5 * s.features[timemodel::Feature::kTriangles] + 1e-5 * s.features[timemodel::Feature::kPixels];
         s.viewpoint = i % 4;
@@ -163,11 +167,12 @@ TEST(Profile, RecordsTheRasterizerThreadsAndReadsOlderFilesWithout) {
     EXPECT_NE(expectProfileError(wrongType).find("machine.lp_num_threads"), std::string::npos);
 }
 
-TEST(Profile, ReadsFilesWrittenBeforeTheTexturedAndShadedEdgeFeatures) {
+TEST(Profile, ReadsFilesWrittenBeforeTheNewerFeatures) {
     const timemodel::DeviceProfile profile = sampleProfile();
     nlohmann::json document = nlohmann::json::parse(timemodel::profileToJson(profile));
-    // What such a file looked like: the two newest features absent everywhere.
-    const std::vector<std::string> newer = {"textured_pixels", "shaded_edge_pixels"};
+    // What such a file looked like: the features added since the first profiles absent everywhere.
+    const std::vector<std::string> newer = {"textured_pixels", "shaded_edge_pixels", "partial_blocks",
+                                            "shaded_partial_blocks"};
     std::vector<std::size_t> positions;
     nlohmann::json names = nlohmann::json::array();
     for (std::size_t i = 0; i < document["feature_names"].size(); ++i) {
@@ -194,8 +199,7 @@ TEST(Profile, ReadsFilesWrittenBeforeTheTexturedAndShadedEdgeFeatures) {
     ASSERT_EQ(older.samples.size(), profile.samples.size());
     for (std::size_t i = 0; i < older.samples.size(); ++i) {
         for (timemodel::Feature feature : timemodel::allFeatures()) {
-            const bool isNewer =
-                feature == timemodel::Feature::kTexturedPixels || feature == timemodel::Feature::kShadedEdgePixels;
+            const bool isNewer = std::find(newer.begin(), newer.end(), timemodel::featureName(feature)) != newer.end();
             EXPECT_EQ(older.samples[i].sample.features[feature],
                       isNewer ? 0.0 : profile.samples[i].sample.features[feature])
                 << timemodel::featureName(feature);

@@ -41,16 +41,20 @@ const char* featureName(Feature feature) {
             return "textured_pixels";
         case Feature::kShadedEdgePixels:
             return "shaded_edge_pixels";
+        case Feature::kPartialBlocks:
+            return "partial_blocks";
+        case Feature::kShadedPartialBlocks:
+            return "shaded_partial_blocks";
     }
     return "unknown";
 }
 
 const std::array<Feature, kFeatureCount>& allFeatures() {
     static const std::array<Feature, kFeatureCount> features = {
-        Feature::kVertices,         Feature::kTriangles,       Feature::kTextureBytes, Feature::kDrawCalls,
-        Feature::kPixels,           Feature::kDrawnObjects,    Feature::kMatrices,     Feature::kBoundingBoxes,
-        Feature::kVisibleTriangles, Feature::kRasterPixels,    Feature::kEdgePixels,   Feature::kShadedPixels,
-        Feature::kTexturedPixels,   Feature::kShadedEdgePixels};
+        Feature::kVertices,         Feature::kTriangles,        Feature::kTextureBytes,  Feature::kDrawCalls,
+        Feature::kPixels,           Feature::kDrawnObjects,     Feature::kMatrices,      Feature::kBoundingBoxes,
+        Feature::kVisibleTriangles, Feature::kRasterPixels,     Feature::kEdgePixels,    Feature::kShadedPixels,
+        Feature::kTexturedPixels,   Feature::kShadedEdgePixels, Feature::kPartialBlocks, Feature::kShadedPartialBlocks};
     return features;
 }
 
@@ -182,6 +186,8 @@ FrameFeatures levelContribution(const scenes::Level& level, const std::vector<sc
     f[Feature::kShadedPixels] = raster.rasterPixels * depthPassShare;
     f[Feature::kTexturedPixels] = texturedRaster * depthPassShare;
     f[Feature::kShadedEdgePixels] = raster.edgePixels * depthPassShare;
+    f[Feature::kPartialBlocks] = raster.partialBlocks;
+    f[Feature::kShadedPartialBlocks] = raster.partialBlocks * depthPassShare;
     return f;
 }
 

@@ -36,6 +36,8 @@ FitReport LinearModel::fitValidated(const std::vector<Sample>& samples) {
                                             column(Feature::kVisibleTriangles),
                                             column(Feature::kShadedPixels),
                                             column(Feature::kTexturedPixels),
+                                            column(Feature::kShadedPartialBlocks),
+                                            column(Feature::kPartialBlocks),
                                             column(Feature::kShadedEdgePixels),
                                             column(Feature::kEdgePixels),
                                             column(Feature::kRasterPixels),

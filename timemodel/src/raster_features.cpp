@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "timemodel/features.hpp"
@@ -39,10 +40,80 @@ int clipAxis(const glm::dvec2* in, int n, int axis, double sign, double limit, g
     return count;
 }
 
+// A polygon edge that is not horizontal, for x at a given y without a division.
+struct SlopedEdge {
+    double low, high;  // its y range
+    double xAtLow, slope;
+};
+
+// The x-extent [low, high] of a convex polygon on the line y = `y`, from its sloped edges (a
+// horizontal edge's ends are ends of sloped ones); empty (low > high) when the line misses it.
+void extentAt(const SlopedEdge* edges, int count, double y, double& low, double& high) {
+    low = std::numeric_limits<double>::infinity();
+    high = -low;
+    for (int i = 0; i < count; ++i) {
+        const SlopedEdge& e = edges[i];
+        if (y < e.low || y > e.high) continue;
+        const double x = e.xAtLow + (y - e.low) * e.slope;
+        low = std::min(low, x);
+        high = std::max(high, x);
+    }
+}
+
+// The 4x4 blocks that convex polygon `v` (n <= 8 points, pixel coordinates inside a `width` x
+// `height` viewport) covers only partly: per block row, the blocks its band of the polygon
+// reaches minus those whose four corners lie inside it (a convex polygon then holds the block).
+// llvmpipe evaluates the coverage mask per pixel only in such blocks; two long edges of a
+// sliver share their blocks, which summing edge lengths would count twice.
+double partialBlocks(const glm::dvec2* v, int n, double width, double height) {
+    constexpr double kBlock = 4.0;
+    SlopedEdge edges[8];
+    int count = 0;
+    double yMin = v[0].y, yMax = v[0].y;
+    for (int i = 0; i < n; ++i) {
+        const glm::dvec2& p = v[i];
+        const glm::dvec2& q = v[(i + 1) % n];
+        yMin = std::min(yMin, p.y);
+        yMax = std::max(yMax, p.y);
+        if (p.y == q.y) continue;
+        const glm::dvec2& bottom = p.y < q.y ? p : q;
+        const glm::dvec2& top = p.y < q.y ? q : p;
+        edges[count++] = {bottom.y, top.y, bottom.x, (top.x - bottom.x) / (top.y - bottom.y)};
+    }
+    const int lastRow = int(std::ceil(height / kBlock)) - 1, lastColumn = int(std::ceil(width / kBlock)) - 1;
+    const int firstRow = std::clamp(int(std::floor(yMin / kBlock)), 0, lastRow);
+    const int endRow = std::clamp(int(std::ceil(yMax / kBlock)) - 1, firstRow, lastRow);
+    double partial = 0.0;
+    double lowBelow, highBelow, lowAbove, highAbove;
+    extentAt(edges, count, firstRow * kBlock, lowBelow, highBelow);
+    for (int row = firstRow; row <= endRow; ++row, lowBelow = lowAbove, highBelow = highAbove) {
+        const double bottom = row * kBlock, top = bottom + kBlock;
+        extentAt(edges, count, top, lowAbove, highAbove);
+        double low = std::min(lowBelow, lowAbove), high = std::max(highBelow, highAbove);
+        for (int i = 0; i < n; ++i) {
+            if (v[i].y >= bottom && v[i].y <= top) {
+                low = std::min(low, v[i].x);
+                high = std::max(high, v[i].x);
+            }
+        }
+        if (!(low <= high)) continue;
+        const int first = std::clamp(int(std::floor(low / kBlock)), 0, lastColumn);
+        const int last = std::clamp(int(std::ceil(high / kBlock)) - 1, first, lastColumn);
+        double full = 0.0;
+        if (lowBelow <= highBelow && lowAbove <= highAbove) {
+            const double inLow = std::max(lowBelow, lowAbove), inHigh = std::min(highBelow, highAbove);
+            full = std::max(0.0, std::floor(inHigh / kBlock) - std::ceil(inLow / kBlock));
+        }
+        partial += double(last - first + 1) - full;
+    }
+    return partial;
+}
+
 // Screen area in pixels of triangle (a, b, c) in clip space, clipped to the near plane and the
-// viewport; adds the length of its clipped edges that are not on the viewport border to `edges`.
+// viewport; adds the length of its clipped edges that are not on the viewport border to `edges`
+// and its partly covered 4x4 blocks to `blocks`.
 double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, double halfWidth,
-                            double halfHeight, double& edges) {
+                            double halfHeight, double& edges, double& blocks) {
     glm::vec4 polygon[4];
     int count = 0;
     const glm::vec4 in[3] = {a, b, c};
@@ -77,6 +148,9 @@ double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::v
         twiceArea += p.x * q.y - q.x * p.y;
         if (!onBorder(p, q)) edges += glm::length(q - p);
     }
+    if (twiceArea == 0.0 || !std::isfinite(twiceArea)) return 0.0;
+    for (int i = 0; i < count; ++i) screen[i] += glm::dvec2(halfWidth, halfHeight);  // pixels from the corner
+    blocks += partialBlocks(screen, count, 2.0 * halfWidth, 2.0 * halfHeight);
     return 0.5 * std::abs(twiceArea);
 }
 
@@ -97,7 +171,8 @@ void addRasterFeatures(const scenes::Mesh& mesh, const glm::mat4& modelViewProje
         const std::uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
         if (codes[a] & codes[b] & codes[c]) continue;  // trivially outside one plane
         sum.visibleTriangles += 1.0;
-        sum.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height, sum.edgePixels);
+        sum.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height, sum.edgePixels,
+                                                 sum.partialBlocks);
     }
 }
 

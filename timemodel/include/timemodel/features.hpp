@@ -26,7 +26,13 @@
 //                      one, and a depth-failed fragment costs a fifth to a tenth of either
 //                      (bench/renderer_bench, docs/timemodel.md "Overdraw probe");
 //   shaded edge pixels — edge pixels times the same depth-pass share: the partial blocks along
-//                      edges are cheap too where the depth test fails.
+//                      edges are cheap too where the depth test fails;
+//   partial blocks   — the 4x4 pixel blocks their clipped outlines cover only partly: llvmpipe
+//                      rasterizes in 4x4 blocks and tests pixel coverage only in partial ones.
+//                      Edge length counts a sliver's blocks twice (both long edges cross
+//                      them); the sea seen from half a metre is all slivers (docs/timemodel.md
+//                      "Partial blocks");
+//   shaded partial blocks — partial blocks times the depth-pass share.
 // These walk the geometry once per (object, level) when a table is built.
 //
 // A FeatureTable precomputes each (object, level) contribution for one viewpoint and render
@@ -60,8 +66,10 @@ enum class Feature : int {
     // Added after the first profiles: older files lack them (read as 0).
     kTexturedPixels,
     kShadedEdgePixels,
+    kPartialBlocks,
+    kShadedPartialBlocks,
 };
-inline constexpr std::size_t kFeatureCount = 14;
+inline constexpr std::size_t kFeatureCount = 16;
 
 // Stable snake_case name ("vertices", "texture_bytes", ...), used in profiles and tables.
 const char* featureName(Feature feature);
@@ -100,12 +108,13 @@ double viewportPixels(const ProjectedOutline& outline, int width, int height);
 // `width`, `height` > 0: viewport size in pixels.
 double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& modelViewProjection, int width, int height);
 
-// Visible triangles, raster pixels and edge pixels (see the file comment) of `meshes` seen
+// Visible triangles, raster pixels, edge pixels and partial blocks (see the file comment) of `meshes` seen
 // through `modelViewProjection` at `width` x `height` pixels; O(vertices + triangles).
 struct RasterFeatures {
     double visibleTriangles = 0.0;
     double rasterPixels = 0.0;
     double edgePixels = 0.0;
+    double partialBlocks = 0.0;
 };
 RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
                               int height);
