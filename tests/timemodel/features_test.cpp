@@ -4,9 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <glm/gtc/matrix_transform.hpp>
 #include <string>
 #include <vector>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "scenes/mesh_builder.hpp"
 
@@ -203,6 +204,82 @@ TEST(RasterFeatures, PartialBlocksByHand) {
     // Moved by one pixel off the block lines, its legs cut blocks too: per block row from the
     // bottom 5, 3, 3, 2 and 1 (one block of the second row is whole).
     EXPECT_DOUBLE_EQ(pixelTriangle({9, 9}, {25, 9}, {9, 25}).partialBlocks, 14.0);
+}
+
+namespace {
+
+// Twice the signed area of polygon `p`.
+double twiceArea(const std::vector<glm::dvec2>& p) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+        sum += p[i].x * p[(i + 1) % p.size()].y - p[(i + 1) % p.size()].x * p[i].y;
+    return sum;
+}
+
+// The reference: per 4x4 block of the viewport, the triangle clipped to the block's square has
+// an area (reached) and not all four corners lie inside the triangle (not whole).
+double partialBlocksByClipping(const std::vector<glm::dvec2>& triangle, int width, int height) {
+    const double orientation = twiceArea(triangle) > 0.0 ? 1.0 : -1.0;
+    auto inside = [&](glm::dvec2 q) {
+        for (std::size_t i = 0; i < 3; ++i) {
+            const glm::dvec2 a = triangle[i], b = triangle[(i + 1) % 3];
+            if (orientation * ((b.x - a.x) * (q.y - a.y) - (b.y - a.y) * (q.x - a.x)) < 0.0) return false;
+        }
+        return true;
+    };
+    double partial = 0.0;
+    for (int by = 0; by < height; by += 4) {
+        for (int bx = 0; bx < width; bx += 4) {
+            std::vector<glm::dvec2> polygon = triangle;
+            // Keep the side of each square edge: x >= bx, x <= bx + 4, y >= by, y <= by + 4.
+            const double limits[4] = {double(bx), double(bx + 4), double(by), double(by + 4)};
+            for (int side = 0; side < 4; ++side) {
+                const int axis = side / 2;
+                const double sign = side % 2 ? -1.0 : 1.0;  // keep sign * (coordinate - limit) >= 0
+                std::vector<glm::dvec2> kept;
+                for (std::size_t i = 0; i < polygon.size(); ++i) {
+                    const glm::dvec2 a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+                    const double da = sign * (a[axis] - limits[side]), db = sign * (b[axis] - limits[side]);
+                    if (da >= 0.0) kept.push_back(a);
+                    if ((da >= 0.0) != (db >= 0.0)) kept.push_back(a + (b - a) * (da / (da - db)));
+                }
+                polygon = kept;
+            }
+            if (polygon.size() < 3 || std::abs(twiceArea(polygon)) < 1e-9) continue;
+            const bool whole =
+                inside({bx, by}) && inside({bx + 4, by}) && inside({bx, by + 4}) && inside({bx + 4, by + 4});
+            if (!whole) partial += 1.0;
+        }
+    }
+    return partial;
+}
+
+}  // namespace
+
+TEST(RasterFeatures, PartialBlocksMatchClippingEveryBlock) {
+    // Random triangles, many reaching past the viewport, slivers among them, against the
+    // block-by-block reference; the pixel coordinates are the ones the feature sees (float
+    // positions through the identity projection).
+    std::uint64_t state = 7;
+    auto uniform = [&state](double low, double high) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return low + (high - low) * double(state >> 11) / double(1ull << 53);
+    };
+    for (int t = 0; t < 400; ++t) {
+        std::vector<glm::vec2> corners;
+        for (int k = 0; k < 3; ++k) corners.push_back({float(uniform(-20.0, 84.0)), float(uniform(-20.0, 84.0))});
+        if (t % 4 == 0) corners[2] = corners[1] + glm::vec2(float(uniform(-0.5, 0.5)), float(uniform(-0.5, 0.5)));
+        std::vector<glm::dvec2> pixels;
+        for (glm::vec2 c : corners) {
+            const float x = c.x / 32.0f - 1.0f, y = c.y / 32.0f - 1.0f;  // what pixelTriangle stores
+            pixels.push_back({double(x) * 32.0 + 32.0, double(y) * 32.0 + 32.0});
+        }
+        if (std::abs(twiceArea(pixels)) < 1e-6) continue;
+        EXPECT_DOUBLE_EQ(pixelTriangle(corners[0], corners[1], corners[2]).partialBlocks,
+                         partialBlocksByClipping(pixels, 64, 64))
+            << "triangle " << t << ": " << pixels[0].x << "," << pixels[0].y << " " << pixels[1].x << "," << pixels[1].y
+            << " " << pixels[2].x << "," << pixels[2].y;
+    }
 }
 
 TEST(RasterFeatures, TrianglesOutsideTheFrustumAreNotVisible) {

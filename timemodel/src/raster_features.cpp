@@ -48,13 +48,15 @@ struct SlopedEdge {
 
 // The x-extent [low, high] of a convex polygon on the line y = `y`, from its sloped edges (a
 // horizontal edge's ends are ends of sloped ones); empty (low > high) when the line misses it.
-void extentAt(const SlopedEdge* edges, int count, double y, double& low, double& high) {
+// A line within `tolerance` of an edge's end counts as through it: clipping to the viewport
+// leaves a border edge a rounding error off the border's line.
+void extentAt(const SlopedEdge* edges, int count, double y, double tolerance, double& low, double& high) {
     low = std::numeric_limits<double>::infinity();
     high = -low;
     for (int i = 0; i < count; ++i) {
         const SlopedEdge& e = edges[i];
-        if (y < e.low || y > e.high) continue;
-        const double x = e.xAtLow + (y - e.low) * e.slope;
+        if (y < e.low - tolerance || y > e.high + tolerance) continue;
+        const double x = e.xAtLow + std::clamp(y - e.low, 0.0, e.high - e.low) * e.slope;
         low = std::min(low, x);
         high = std::max(high, x);
     }
@@ -67,6 +69,9 @@ void extentAt(const SlopedEdge* edges, int count, double y, double& low, double&
 // sliver share their blocks, which summing edge lengths would count twice.
 double partialBlocks(const glm::dvec2* v, int n, double width, double height) {
     constexpr double kBlock = 4.0;
+    // Clipping leaves a border edge a rounding error off the border's line (x = 1e-15 for 0),
+    // which would cost a whole row or column of blocks: within this many blocks, snap to it.
+    constexpr double kSnap = 1e-7;
     SlopedEdge edges[8];
     int count = 0;
     double yMin = v[0].y, yMax = v[0].y;
@@ -81,14 +86,14 @@ double partialBlocks(const glm::dvec2* v, int n, double width, double height) {
         edges[count++] = {bottom.y, top.y, bottom.x, (top.x - bottom.x) / (top.y - bottom.y)};
     }
     const int lastRow = int(std::ceil(height / kBlock)) - 1, lastColumn = int(std::ceil(width / kBlock)) - 1;
-    const int firstRow = std::clamp(int(std::floor(yMin / kBlock)), 0, lastRow);
-    const int endRow = std::clamp(int(std::ceil(yMax / kBlock)) - 1, firstRow, lastRow);
+    const int firstRow = std::clamp(int(std::floor(yMin / kBlock + kSnap)), 0, lastRow);
+    const int endRow = std::clamp(int(std::ceil(yMax / kBlock - kSnap)) - 1, firstRow, lastRow);
     double partial = 0.0;
     double lowBelow, highBelow, lowAbove, highAbove;
-    extentAt(edges, count, firstRow * kBlock, lowBelow, highBelow);
+    extentAt(edges, count, firstRow * kBlock, kSnap * kBlock, lowBelow, highBelow);
     for (int row = firstRow; row <= endRow; ++row, lowBelow = lowAbove, highBelow = highAbove) {
         const double bottom = row * kBlock, top = bottom + kBlock;
-        extentAt(edges, count, top, lowAbove, highAbove);
+        extentAt(edges, count, top, kSnap * kBlock, lowAbove, highAbove);
         double low = std::min(lowBelow, lowAbove), high = std::max(highBelow, highAbove);
         for (int i = 0; i < n; ++i) {
             if (v[i].y >= bottom && v[i].y <= top) {
@@ -97,12 +102,12 @@ double partialBlocks(const glm::dvec2* v, int n, double width, double height) {
             }
         }
         if (!(low <= high)) continue;
-        const int first = std::clamp(int(std::floor(low / kBlock)), 0, lastColumn);
-        const int last = std::clamp(int(std::ceil(high / kBlock)) - 1, first, lastColumn);
+        const int first = std::clamp(int(std::floor(low / kBlock + kSnap)), 0, lastColumn);
+        const int last = std::clamp(int(std::ceil(high / kBlock - kSnap)) - 1, first, lastColumn);
         double full = 0.0;
         if (lowBelow <= highBelow && lowAbove <= highAbove) {
             const double inLow = std::max(lowBelow, lowAbove), inHigh = std::min(highBelow, highAbove);
-            full = std::max(0.0, std::floor(inHigh / kBlock) - std::ceil(inLow / kBlock));
+            full = std::max(0.0, std::floor(inHigh / kBlock + kSnap) - std::ceil(inLow / kBlock - kSnap));
         }
         partial += double(last - first + 1) - full;
     }

@@ -108,8 +108,9 @@ double viewportPixels(const ProjectedOutline& outline, int width, int height);
 // `width`, `height` > 0: viewport size in pixels.
 double projectedPixels(const scenes::Bounds& objectBounds, const glm::mat4& modelViewProjection, int width, int height);
 
-// Visible triangles, raster pixels, edge pixels and partial blocks (see the file comment) of `meshes` seen
-// through `modelViewProjection` at `width` x `height` pixels; O(vertices + triangles).
+// Visible triangles, raster pixels, edge pixels and partial blocks (see the file comment) of
+// `meshes` seen through `modelViewProjection` at `width` x `height` pixels; O(vertices +
+// triangles + the 4-pixel rows they span).
 struct RasterFeatures {
     double visibleTriangles = 0.0;
     double rasterPixels = 0.0;
