@@ -40,6 +40,12 @@ int clipAxis(const glm::dvec2* in, int n, int axis, double sign, double limit, g
     return count;
 }
 
+// llvmpipe's raster block, in pixels.
+constexpr double kBlock = 4.0;
+// Clipping leaves a border edge a rounding error off the border's line (x = 1e-15 for 0), which
+// would cost a whole row or column of blocks: within this many blocks of a block line, snap to it.
+constexpr double kSnap = 1e-7;
+
 // A polygon edge that is not horizontal, for x at a given y without a division.
 struct SlopedEdge {
     double low, high;  // its y range
@@ -48,9 +54,9 @@ struct SlopedEdge {
 
 // The x-extent [low, high] of a convex polygon on the line y = `y`, from its sloped edges (a
 // horizontal edge's ends are ends of sloped ones); empty (low > high) when the line misses it.
-// A line within `tolerance` of an edge's end counts as through it: clipping to the viewport
-// leaves a border edge a rounding error off the border's line.
-void extentAt(const SlopedEdge* edges, int count, double y, double tolerance, double& low, double& high) {
+// A line within kSnap blocks of an edge's end counts as through it.
+void extentAt(const SlopedEdge* edges, int count, double y, double& low, double& high) {
+    constexpr double tolerance = kSnap * kBlock;
     low = std::numeric_limits<double>::infinity();
     high = -low;
     for (int i = 0; i < count; ++i) {
@@ -68,10 +74,6 @@ void extentAt(const SlopedEdge* edges, int count, double y, double tolerance, do
 // llvmpipe evaluates the coverage mask per pixel only in such blocks; two long edges of a
 // sliver share their blocks, which summing edge lengths would count twice.
 double partialBlocks(const glm::dvec2* v, int n, double width, double height) {
-    constexpr double kBlock = 4.0;
-    // Clipping leaves a border edge a rounding error off the border's line (x = 1e-15 for 0),
-    // which would cost a whole row or column of blocks: within this many blocks, snap to it.
-    constexpr double kSnap = 1e-7;
     SlopedEdge edges[8];
     int count = 0;
     double yMin = v[0].y, yMax = v[0].y;
@@ -90,10 +92,10 @@ double partialBlocks(const glm::dvec2* v, int n, double width, double height) {
     const int endRow = std::clamp(int(std::ceil(yMax / kBlock - kSnap)) - 1, firstRow, lastRow);
     double partial = 0.0;
     double lowBelow, highBelow, lowAbove, highAbove;
-    extentAt(edges, count, firstRow * kBlock, kSnap * kBlock, lowBelow, highBelow);
+    extentAt(edges, count, firstRow * kBlock, lowBelow, highBelow);
     for (int row = firstRow; row <= endRow; ++row, lowBelow = lowAbove, highBelow = highAbove) {
         const double bottom = row * kBlock, top = bottom + kBlock;
-        extentAt(edges, count, top, kSnap * kBlock, lowAbove, highAbove);
+        extentAt(edges, count, top, lowAbove, highAbove);
         double low = std::min(lowBelow, lowAbove), high = std::max(highBelow, highAbove);
         for (int i = 0; i < n; ++i) {
             if (v[i].y >= bottom && v[i].y <= top) {
