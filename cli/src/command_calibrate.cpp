@@ -8,7 +8,9 @@
 // sample and a slow one still finishes. Each pass `warmup` untimed draws then `repeats` timed
 // draws of draw + glFinish (renderer::Renderer::drawAndFinish), each on the steady clock and
 // on the process CPU clock (all of llvmpipe's threads). The fitted time is the statistic that
-// --clock names (timemodel::TimingSettings); all four are kept in the profile.
+// --clock names (timemodel::TimingSettings); all four are kept in the profile. The default,
+// --clock auto, fits the wall clock whose split-half repeatability over the fitting samples
+// was best in this run (timemodel/timing.hpp).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -26,6 +28,7 @@
 #include "timemodel/calibration.hpp"
 #include "timemodel/features.hpp"
 #include "timemodel/profile.hpp"
+#include "timemodel/timing.hpp"
 
 namespace lodopt::cli {
 namespace {
@@ -43,7 +46,7 @@ struct CalibrateOptions {
     double timeBudget = 110.0;
     int repeats = 3;
     int warmup = 1;
-    std::string clock = timemodel::kDefaultTimingClock;
+    std::string clock = timemodel::kAutoClock;
     std::string out = "device.json";
     OutputOptions output;
 };
@@ -54,47 +57,12 @@ double median(std::vector<double> values) {
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-// One sample's timings, one entry per pass.
-struct SampleTimings {
-    std::vector<double> passMin, passMedian, passCpu;
-};
-
-// The per-pass values `clock` reads: each pass's least wall time for wall-min and
-// wall-min-median, its median wall or CPU time for wall-median and cpu.
-const std::vector<double>& perPassValues(const std::string& clock, const SampleTimings& timings) {
-    if (clock == "cpu") return timings.passCpu;
-    if (clock == "wall-median") return timings.passMedian;
-    return timings.passMin;
-}
-
-// A sample's time from its per-pass values on `clock`: their least for wall-min, their median
-// for the others.
-double clockStatistic(const std::string& clock, const std::vector<double>& perPass) {
-    return clock == "wall-min" ? *std::min_element(perPass.begin(), perPass.end()) : median(perPass);
-}
-
-// Repeatability on `clock`: each held-out sample's time from the even passes against the odd
-// ones, by the same statistic, relative to its time from all passes (empty with one pass).
-timemodel::ErrorStats splitHalfRepeatability(const std::string& clock, const std::vector<SampleTimings>& timings,
-                                             const std::vector<timemodel::ProfileSample>& samples) {
-    std::vector<double> halves;
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-        const std::vector<double>& perPass = perPassValues(clock, timings[i]);
-        const double all = timemodel::timeOnClock(samples[i], clock);
-        if (!samples[i].heldOut || perPass.size() < 2 || all <= 0.0) continue;
-        std::vector<double> even, odd;
-        for (std::size_t k = 0; k < perPass.size(); ++k) (k % 2 ? odd : even).push_back(perPass[k]);
-        halves.push_back(std::abs(clockStatistic(clock, even) - clockStatistic(clock, odd)) / all);
-    }
-    return timemodel::summarizeErrors(halves);
-}
-
 void timePass(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
-              int repeats, int warmup, SampleTimings& out) {
+              int repeats, int warmup, timemodel::PassTimes& out) {
     const DrawTimes times = timeDraws(renderer, combination, camera, repeats, warmup);
-    out.passMin.push_back(times.wallMin);
-    out.passMedian.push_back(times.wallMedian);
-    out.passCpu.push_back(times.cpuMedian);
+    out.leastWall.push_back(times.wallMin);
+    out.medianWall.push_back(times.wallMedian);
+    out.medianCpu.push_back(times.cpuMedian);
 }
 
 std::vector<int> parseViews(const scenes::Scene& scene, const std::string& text) {
@@ -139,7 +107,7 @@ void runCalibrate(const CalibrateOptions& options) {
 
     renderer::Renderer renderer(scene, settings);
     const std::size_t count = plan.samples.size();
-    std::vector<SampleTimings> timings(count);
+    std::vector<timemodel::PassTimes> timings(count);
     timemodel::SplitMix64 shuffle(options.seed ^ 0xC0FFEEull);
     std::vector<std::size_t> order(count);
     for (std::size_t i = 0; i < count; ++i) order[i] = i;
@@ -163,25 +131,34 @@ void runCalibrate(const CalibrateOptions& options) {
         ++passes;
     }
 
+    std::vector<bool> heldOut(count), fitting(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        heldOut[i] = plan.viewpoints[plan.samples[i].viewpoint].heldOut;
+        fitting[i] = !heldOut[i];
+    }
+    const bool autoClock = options.clock == timemodel::kAutoClock;
+    const timemodel::ClockChoice choice = timemodel::chooseMostRepeatableClock(timings, fitting);
+    const std::string clock = autoClock ? choice.clock : options.clock;
+
     timemodel::DeviceProfile profile;
     std::vector<timemodel::Sample> fitSamples, heldOutSamples;
     std::vector<double> spreads;
     for (std::size_t i = 0; i < count; ++i) {
         const timemodel::PlannedSample& planned = plan.samples[i];
-        const SampleTimings& t = timings[i];
+        const timemodel::PassTimes& t = timings[i];
         timemodel::ProfileSample recorded;
-        recorded.wallMinMs = clockStatistic("wall-min", perPassValues("wall-min", t));
-        recorded.wallMinMedianMs = clockStatistic("wall-min-median", perPassValues("wall-min-median", t));
-        recorded.wallMedianMs = clockStatistic("wall-median", perPassValues("wall-median", t));
-        recorded.cpuMs = clockStatistic("cpu", perPassValues("cpu", t));
-        const std::vector<double>& perPass = perPassValues(options.clock, t);
+        recorded.wallMinMs = timemodel::timeFromPasses("wall-min", t);
+        recorded.wallMinMedianMs = timemodel::timeFromPasses("wall-min-median", t);
+        recorded.wallMedianMs = timemodel::timeFromPasses("wall-median", t);
+        recorded.cpuMs = timemodel::timeFromPasses("cpu", t);
+        const std::vector<double>& perPass = timemodel::perPassValues(clock, t);
         timemodel::Sample& sample = recorded.sample;
         sample.features = tables[planned.viewpoint].features(planned.combination);
-        sample.measuredMs = clockStatistic(options.clock, perPass);
+        sample.measuredMs = timemodel::clockStatistic(clock, perPass);
         sample.viewpoint = planned.viewpoint;
         const auto [low, high] = std::minmax_element(perPass.begin(), perPass.end());
         if (sample.measuredMs > 0.0) spreads.push_back((*high - *low) / median(perPass));
-        recorded.heldOut = plan.viewpoints[planned.viewpoint].heldOut;
+        recorded.heldOut = heldOut[i];
         (recorded.heldOut ? heldOutSamples : fitSamples).push_back(sample);
         profile.samples.push_back(recorded);
     }
@@ -214,16 +191,16 @@ void runCalibrate(const CalibrateOptions& options) {
         timemodel::ErrorStats repeatability;
     };
     std::vector<OtherClock> otherClocks;
-    for (const std::string& clock : timemodel::timingClockNames()) {
-        if (clock == options.clock) continue;
+    for (const std::string& other : timemodel::timingClockNames()) {
+        if (other == clock) continue;
         std::vector<timemodel::Sample> fitOther, heldOutOther;
         for (const timemodel::ProfileSample& recorded : profile.samples) {
             timemodel::Sample sample = recorded.sample;
-            sample.measuredMs = timemodel::timeOnClock(recorded, clock);
+            sample.measuredMs = timemodel::timeOnClock(recorded, other);
             (recorded.heldOut ? heldOutOther : fitOther).push_back(sample);
         }
-        otherClocks.push_back({clock, timemodel::fitAllModels(fitOther, heldOutOther),
-                               splitHalfRepeatability(clock, timings, profile.samples)});
+        otherClocks.push_back({other, timemodel::fitAllModels(fitOther, heldOutOther),
+                               timemodel::splitHalfRepeatability(other, timings, heldOut)});
     }
 
     profile.created = timemodel::currentDateUtc();
@@ -239,8 +216,9 @@ void runCalibrate(const CalibrateOptions& options) {
     profile.heldOutViewpoints = static_cast<int>(std::count_if(
         plan.viewpoints.begin(), plan.viewpoints.end(), [](const timemodel::Viewpoint& v) { return v.heldOut; }));
     const timemodel::ErrorStats spread = timemodel::summarizeErrors(spreads);
-    const timemodel::ErrorStats repeatability = splitHalfRepeatability(options.clock, timings, profile.samples);
-    profile.timing.clock = options.clock;
+    const timemodel::ErrorStats repeatability = timemodel::splitHalfRepeatability(clock, timings, heldOut);
+    profile.timing.clock = clock;
+    profile.timing.clockRequest = options.clock;
     profile.timing.rounds = passes;
     profile.timing.repeatsPerRound = options.repeats;
     profile.timing.warmup = options.warmup;
@@ -265,6 +243,10 @@ void runCalibrate(const CalibrateOptions& options) {
             entry["fit_errors"] = errorsJson(r.fitErrors);
             entry["notes"] = r.fit.notes;
             models.push_back(entry);
+        }
+        nlohmann::json clockChoiceJson = {{"judged_on", "fitting samples"}, {"measured", choice.measured}};
+        for (const timemodel::ClockCandidate& candidate : choice.candidates) {
+            clockChoiceJson["split_half"][candidate.clock] = errorsJson(candidate.repeatability);
         }
         nlohmann::json otherJson = nlohmann::json::object();
         for (const OtherClock& other : otherClocks) {
@@ -291,7 +273,9 @@ void runCalibrate(const CalibrateOptions& options) {
                    {"held_out_samples", heldOutSamples.size()},
                    {"viewpoints", profile.viewpoints},
                    {"held_out_viewpoints", profile.heldOutViewpoints},
-                   {"clock", options.clock},
+                   {"clock", clock},
+                   {"clock_request", options.clock},
+                   {"clock_choice", clockChoiceJson},
                    {"timing_spread_median", spread.median},
                    {"timing_spread_p90", spread.p90},
                    {"split_half_median", repeatability.median},
@@ -313,9 +297,22 @@ void runCalibrate(const CalibrateOptions& options) {
                   "repeatability: a held-out sample's time from the even passes against the odd ones differs by "
                   "median %.1f%%, p90 %.1f%%\n",
                   count, fitSamples.size(), profile.viewpoints - profile.heldOutViewpoints, heldOutSamples.size(),
-                  profile.heldOutViewpoints, options.clock.c_str(), passes, options.repeats, options.warmup,
+                  profile.heldOutViewpoints, clock.c_str(), passes, options.repeats, options.warmup,
                   100.0 * spread.median, 100.0 * spread.p90, 100.0 * repeatability.median, 100.0 * repeatability.p90);
-    std::cout << line << timemodel::formatErrorTable(profile.models);
+    std::cout << line;
+    if (autoClock && !choice.measured) {
+        std::cout << "clock auto: " << clock << ", the default: one pass leaves no repeatability to judge\n";
+    } else if (autoClock) {
+        std::cout << "clock auto: " << clock
+                  << ", the wall clock that repeated best on the fitting samples (split-half median ";
+        for (std::size_t c = 0; c < choice.candidates.size(); ++c) {
+            std::snprintf(line, sizeof line, "%s%s %.1f%%", c ? ", " : "", choice.candidates[c].clock.c_str(),
+                          100.0 * choice.candidates[c].repeatability.median);
+            std::cout << line;
+        }
+        std::cout << ")\n";
+    }
+    std::cout << timemodel::formatErrorTable(profile.models);
     std::snprintf(line, sizeof line, "every viewpoint held out once (%d folds, %zu samples):", plan.folds, count);
     std::cout << line;
     for (const timemodel::ModelResult& r : profile.models) {
@@ -342,6 +339,12 @@ void runCalibrate(const CalibrateOptions& options) {
     }
     std::snprintf(line, sizeof line, "wrote %s (%.1f s)\n", options.out.c_str(), profile.timing.seconds);
     std::cout << line;
+}
+
+std::vector<std::string> clockChoices() {
+    std::vector<std::string> names = timemodel::timingClockNames();
+    names.insert(names.begin(), timemodel::kAutoClock);
+    return names;
 }
 
 }  // namespace
@@ -381,10 +384,10 @@ void addCalibrateCommand(CLI::App& app) {
         ->check(CLI::Range(0, 100));
     command
         ->add_option("--clock", options->clock,
-                     "Fitted time: wall-min (least wall time), wall-min-median (median of each pass's least), "
-                     "wall-median, or cpu (process CPU time)")
+                     "Fitted time: auto (the wall clock that repeats best in this run), wall-min (least wall "
+                     "time), wall-min-median (median of each pass's least), wall-median, or cpu (process CPU time)")
         ->capture_default_str()
-        ->check(CLI::IsMember(timemodel::timingClockNames()));
+        ->check(CLI::IsMember(clockChoices()));
     command->add_option("--out", options->out, "Device profile to write (JSON)")->capture_default_str();
     addOutputOptions(*command, options->output);
     command->callback([options] { runCalibrate(*options); });

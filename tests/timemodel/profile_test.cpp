@@ -12,6 +12,7 @@
 
 #include "scenes/builtin.hpp"
 #include "timemodel/estimator.hpp"
+#include "timemodel/timing.hpp"
 
 using namespace lodopt;
 
@@ -46,7 +47,7 @@ timemodel::DeviceProfile sampleProfile() {
     profile.seed = 17;
     profile.viewpoints = 4;
     profile.heldOutViewpoints = 1;
-    profile.timing = {"cpu", 3, 2, 1, 0.05, 0.1, 12.5};
+    profile.timing = {"cpu", 3, 2, 1, 0.05, 0.1, 12.5, 0.0, 0.0, "cpu"};
     profile.models = timemodel::fitAllModels(fit, heldOut);
     // The first model with a rotated measurement, the others without (profiles from before it).
     profile.models[0].rotatedErrors = {12, 0.05, 0.04, 0.11, 0.2};
@@ -165,6 +166,21 @@ TEST(Profile, RecordsTheRasterizerThreadsAndReadsOlderFilesWithout) {
     const std::string asText = "\"lp_num_threads\": \"1\"";
     wrongType.replace(wrongType.find(asText), asText.size(), "\"lp_num_threads\": 1");
     EXPECT_NE(expectProfileError(wrongType).find("machine.lp_num_threads"), std::string::npos);
+}
+
+TEST(Profile, RecordsTheClockAskedForAndReadsOlderFilesWithout) {
+    timemodel::DeviceProfile profile = sampleProfile();
+    profile.timing.clock = "wall-min";
+    profile.timing.clockRequest = timemodel::kAutoClock;
+    nlohmann::json document = nlohmann::json::parse(timemodel::profileToJson(profile));
+    EXPECT_EQ(document["calibration"]["timing"]["clock_request"], "auto");
+    const timemodel::DeviceProfile loaded = timemodel::profileFromJson(document.dump(), "p.json");
+    EXPECT_EQ(loaded.timing.clock, "wall-min");
+    EXPECT_EQ(loaded.timing.clockRequest, "auto");
+    document["calibration"]["timing"].erase("clock_request");  // written before 2026-12-05
+    EXPECT_EQ(timemodel::profileFromJson(document.dump(), "p.json").timing.clockRequest, "");
+    document["calibration"]["timing"]["clock_request"] = 3;
+    EXPECT_NE(expectProfileError(document.dump()).find("calibration.timing.clock_request"), std::string::npos);
 }
 
 TEST(Profile, ReadsFilesWrittenBeforeTheNewerFeatures) {

@@ -176,6 +176,7 @@ std::string profileToJson(const DeviceProfile& profile) {
           {"held_out_samples", heldOutCount},
           {"timing",
            {{"clock", t.clock},
+            {"clock_request", t.clockRequest},
             {"rounds", t.rounds},
             {"repeats_per_round", t.repeatsPerRound},
             {"warmup", t.warmup},
@@ -246,7 +247,10 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
     profile.timing.medianSpread = read.number(timing, "median_spread", "calibration.timing");
     profile.timing.p90Spread = read.number(timing, "p90_spread", "calibration.timing");
     profile.timing.seconds = read.number(timing, "seconds", "calibration.timing");
-    // Optional: profiles written before it was recorded.
+    // Optional: profiles written before they were recorded.
+    if (timing.contains("clock_request")) {
+        profile.timing.clockRequest = read.text(timing, "clock_request", "calibration.timing");
+    }
     if (timing.contains("split_half_median")) {
         profile.timing.splitHalfMedian = read.number(timing, "split_half_median", "calibration.timing");
         profile.timing.splitHalfP90 = read.number(timing, "split_half_p90", "calibration.timing");
