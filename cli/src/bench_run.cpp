@@ -417,12 +417,14 @@ std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewC
             batchTime(timeDraws(*prepared.renderer, combination, camera, repeats, 1), profile.timing.clock));
         combinations.push_back(std::move(combination));
     }
+    // Every feature: the cost's table holds only what the chosen model reads.
+    const timemodel::FeatureTable table(scene, camera, prepared.settings.width, prepared.settings.height);
     for (const timemodel::ModelResult& result : profile.models) {
         if (!result.fitted) continue;
         const std::unique_ptr<timemodel::TimeModel> model = timemodel::modelFromProfile(profile, result.name);
         std::vector<double> errors;
         for (std::size_t f = 0; f < combinations.size(); ++f) {
-            const double estimate = model->estimateMs(context.cost->table().features(combinations[f]));
+            const double estimate = model->estimateMs(table.features(combinations[f]));
             if (measured[f] > 0.0) errors.push_back(std::abs(measured[f] - estimate) / measured[f]);
         }
         const timemodel::ErrorStats e = timemodel::summarizeErrors(errors);

@@ -274,7 +274,7 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
                                     {"seconds", view.optimizerSeconds}};
             writeJsonFile(checkpoint.string(), saved);
         }
-        view.cost = std::make_unique<evaluation::TimeModelCost>(*view.setup, prepared.estimator);
+        view.cost = std::make_unique<evaluation::TimeModelCost>(*view.setup, prepared.estimator, prepared.readFeatures);
         // Scored here with the same evaluator as every scheduler choice, resumed or not.
         view.optimizerFitness = view.evaluator->evaluate(view.setup->fromScene(view.optimizerLevels)).fitness;
         progress.step(view.camera.name + (view.resumed ? " (resumed)" : ""));
@@ -323,7 +323,8 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     prepareViews(options, prepared, views, output);
 
     const scheduler::FeatureMode mode = parseFeatureMode(options.features);
-    const scheduler::SceneIndex index(prepared.scene, prepared.settings.width, prepared.settings.height, mode);
+    const scheduler::SceneIndex index(prepared.scene, prepared.settings.width, prepared.settings.height, mode, 0,
+                                      prepared.readFeatures);
     scheduler::SchedulerParameters parameters;
     parameters.budgetMs = options.optimize.budgetMs;
     parameters.switchControl.enabled = false;  // single views: nothing to hold

@@ -63,6 +63,7 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
     TimeEstimator estimator = loadTimeEstimator(options.profile, options.model, prepared.scene.name, prepared.settings,
                                                 prepared.renderer->glRendererString(), std::cerr);
     prepared.estimator = estimator.estimate;
+    prepared.readFeatures = estimator.model->readFeatures();
     prepared.timeModelName = estimator.name;
     return prepared;
 }
@@ -80,7 +81,8 @@ ViewContext prepareView(PreparedScene& prepared, int view, const OptimizeOptions
         context.evaluator = std::make_unique<evaluation::LayerEvaluator>(
             *context.setup, search, options.threads, evaluation::DirtyRegions::ChangedPixels, options.evalStates);
     }
-    context.cost = std::make_unique<evaluation::TimeModelCost>(*context.setup, prepared.estimator);
+    context.cost =
+        std::make_unique<evaluation::TimeModelCost>(*context.setup, prepared.estimator, prepared.readFeatures);
     context.problem.levelCounts = context.setup->levelCounts();
     context.problem.evaluator = context.evaluator.get();
     context.problem.cost = context.cost.get();

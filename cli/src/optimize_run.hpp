@@ -73,6 +73,7 @@ struct PreparedScene {
     renderer::RenderSettings settings;
     metrics::MetricParameters metrics;
     evaluation::FrameTimeEstimator estimator;
+    timemodel::FeatureSet readFeatures = timemodel::everyFeature();  // what `estimator` reads (tables skip the rest)
     std::string timeModelName;
     std::unique_ptr<renderer::Renderer> renderer;
 };

@@ -13,8 +13,9 @@ double clampMs(double ms) { return std::isfinite(ms) ? std::max(ms, 0.0) : 0.0; 
 
 }  // namespace
 
-TimeModelCost::TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator)
-    : mTable(setup.scene(), setup.camera(), setup.width(), setup.height()),
+TimeModelCost::TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator, const timemodel::FeatureSet& needed)
+    : mTable(setup.scene(), setup.camera(), setup.width(), setup.height(), timemodel::FeatureTable::kDepthPassCells,
+             needed),
       mEstimator(std::move(estimator)),
       mId(nextId()) {
     const std::vector<int>& variables = setup.variableObjects();

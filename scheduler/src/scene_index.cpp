@@ -97,6 +97,7 @@ constexpr std::size_t kProxyTriangles = 256;
 // on a coarser grid than the time model's: a proxy fills the view there, and at 128 cells its
 // pass cost about as much as the rest of a city decision.
 constexpr int kProxyDepthPassCells = 32;
+constexpr int kDepthPassCells = timemodel::FeatureTable::kDepthPassCells;
 
 // `object` with every level's triangles thinned to an even sample of at most kProxyTriangles.
 scenes::Object proxyOf(const scenes::Object& object) {
@@ -135,8 +136,9 @@ scenes::Object proxyOf(const scenes::Object& object) {
 
 }  // namespace
 
-SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode, int threads)
-    : mScene(scene), mWidth(width), mHeight(height), mMode(mode), mThreads(threads) {
+SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode, int threads,
+                       const timemodel::FeatureSet& needed)
+    : mScene(scene), mWidth(width), mHeight(height), mMode(mode), mNeeded(needed), mThreads(threads) {
     assert(width > 0 && height > 0);
     const int objects = int(scene.objects.size());
     mShapes.reserve(objects);
@@ -165,7 +167,7 @@ SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, Featur
     // stays right whatever the model counts there.
     scenes::Camera any;
     if (!scene.views.empty()) any = scene.views.front();
-    mFrameConstant = timemodel::FeatureTable(scene, any, width, height).frameConstant();
+    mFrameConstant = timemodel::FeatureTable(scene, any, width, height, kDepthPassCells, mNeeded).frameConstant();
     if (mMode == FeatureMode::Bounds) measureCanonical();
 }
 
@@ -226,9 +228,9 @@ void SceneIndex::measureCanonical() {
         };
         scenes::Camera away = cameraAt(glm::vec3(0.0f, 0.0f, 1.0f), nearDistance);
         away.target = away.position + glm::vec3(0.0f, 0.0f, nearDistance);  // looking away
-        const timemodel::FeatureTable unseen(single, away, mWidth, mHeight);
+        const timemodel::FeatureTable unseen(single, away, mWidth, mHeight, kDepthPassCells, mNeeded);
         const int count = levelCount(o);
-        const timemodel::FeatureTable proxyUnseen(proxy, away, mWidth, mHeight, kProxyDepthPassCells);
+        const timemodel::FeatureTable proxyUnseen(proxy, away, mWidth, mHeight, kProxyDepthPassCells, mNeeded);
         for (int l = 0; l < count; ++l) {
             c.unseen[mFirstLevel[o] + l] = unseen.contribution(0, l);
             c.proxyUnseen[mFirstLevel[o] + l] = proxyUnseen.contribution(0, l);
@@ -242,17 +244,18 @@ void SceneIndex::measureCanonical() {
         std::vector<FrameFeatures> proxySum(static_cast<std::size_t>(count));
         for (int k = 0; k < Canonical::kDirections; ++k) {
             const scenes::Camera nearCamera = cameraAt(c.directions[k], nearDistance);
-            const timemodel::FeatureTable nearTable(single, nearCamera, mWidth, mHeight);
+            const timemodel::FeatureTable nearTable(single, nearCamera, mWidth, mHeight, kDepthPassCells, mNeeded);
             const glm::mat4 nearVp =
                 scenes::projectionMatrix(nearCamera, float(aspect)) * scenes::viewMatrix(nearCamera);
             const bool axis = k < 6;
             std::unique_ptr<timemodel::FeatureTable> farTable, proxyTable;
             glm::mat4 farVp(1.0f);
             if (axis) {
-                proxyTable =
-                    std::make_unique<timemodel::FeatureTable>(proxy, nearCamera, mWidth, mHeight, kProxyDepthPassCells);
+                proxyTable = std::make_unique<timemodel::FeatureTable>(proxy, nearCamera, mWidth, mHeight,
+                                                                       kProxyDepthPassCells, mNeeded);
                 const scenes::Camera farCamera = cameraAt(c.directions[k], nearDistance * kFarFactor);
-                farTable = std::make_unique<timemodel::FeatureTable>(single, farCamera, mWidth, mHeight);
+                farTable = std::make_unique<timemodel::FeatureTable>(single, farCamera, mWidth, mHeight,
+                                                                     kDepthPassCells, mNeeded);
                 farVp = scenes::projectionMatrix(farCamera, float(aspect)) * scenes::viewMatrix(farCamera);
             }
             for (int l = 0; l < count; ++l) {
@@ -334,7 +337,8 @@ void SceneIndex::beginFrame(const scenes::Camera& camera, FrameObjects& out) con
     out.views.resize(mShapes.size());
     out.contributions.resize(std::size_t(totalLevels()));
     if (mMode == FeatureMode::Exact) {
-        out.table = std::make_shared<timemodel::FeatureTable>(mScene, camera, mWidth, mHeight);
+        out.table =
+            std::make_shared<timemodel::FeatureTable>(mScene, camera, mWidth, mHeight, kDepthPassCells, mNeeded);
     }
 }
 
@@ -358,7 +362,7 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
     const float length = glm::length(toEye);
     if (length < kProxyWithinRadii * shape.radius) {
         const timemodel::FeatureTable table(c.proxies[std::size_t(object)], out.camera, mWidth, mHeight,
-                                            kProxyDepthPassCells);
+                                            kProxyDepthPassCells, mNeeded);
         for (int l = 0; l < count; ++l) {
             const int index = first + l;
             FrameFeatures& f = out.contributions[index];

@@ -73,6 +73,15 @@ FrameScheduler::FrameScheduler(const SceneIndex& index, std::unique_ptr<timemode
     : mIndex(index), mModel(std::move(model)), mParameters(std::move(parameters)), mWork(std::make_unique<Work>()) {
     assert(mModel && mModel->fitted());
     validateParameters(mParameters, index.objectCount());
+    // The index skipped the work of the features outside its set (left 0): the model must not read them.
+    const timemodel::FeatureSet missing = mModel->readFeatures() & ~index.neededFeatures();
+    for (timemodel::Feature feature : timemodel::allFeatures()) {
+        if (timemodel::contains(missing, feature)) {
+            throw std::invalid_argument(std::string("scheduler: the time model reads '") +
+                                        timemodel::featureName(feature) +
+                                        "', which the scene index was built without (SceneIndex's needed features)");
+        }
+    }
     // The tile organisation has no hysteresis passes: it filters its decision by VMI20's rule.
     mFilterControl = mParameters.switchControl;
     mFilterControl.enabled =

@@ -371,5 +371,45 @@ TEST(Scheduler, RejectsBadParameters) {
     EXPECT_THROW(FrameScheduler(index, testing::triangleModel(0, 1), p), std::invalid_argument);
 }
 
+TEST(Scheduler, DecidesTheSameFromAnIndexBuiltForTheModelsFeatures) {
+    // A model reading triangles, edge pixels and shaded pixels (the depth pass) but not the
+    // partial blocks: an index built for its set skips their work and decides the same.
+    const scenes::Scene scene = testing::makeGridScene(6, 6, 6.0f);
+    auto model = timemodel::makeTimeModel("linear");
+    std::vector<double> coefficients(model->coefficientNames().size(), 0.0);
+    coefficients[0] = kInterceptMs;
+    coefficients[std::size_t(timemodel::Feature::kTriangles) + 1] = kMsPerTriangle;
+    coefficients[std::size_t(timemodel::Feature::kEdgePixels) + 1] = 1e-3;
+    coefficients[std::size_t(timemodel::Feature::kShadedPixels) + 1] = 1e-5;
+    model->setCoefficients(coefficients);
+    const timemodel::FeatureSet read = model->readFeatures();
+    ASSERT_EQ(read.count(), 3u);
+    for (FeatureMode mode : {FeatureMode::Bounds, FeatureMode::Exact}) {
+        const SceneIndex everything(scene, 96, 96, mode);
+        const SceneIndex forTheModel(scene, 96, 96, mode, 0, read);
+        SchedulerParameters p;
+        p.budgetMs = 4.0;
+        FrameScheduler a(everything, model->clone(), p), b(forTheModel, model->clone(), p);
+        int frames = 0;
+        for (const scenes::Camera& camera : orbit(16, 30.0f, 8.0f)) {
+            const FrameDecision& x = a.decide(camera, frames / 30.0);
+            const FrameDecision& y = b.decide(camera, frames / 30.0);
+            ++frames;
+            EXPECT_EQ(x.levels, y.levels) << toString(mode) << " frame " << frames;
+            EXPECT_EQ(x.predictedMs, y.predictedMs);
+            EXPECT_EQ(y.features[timemodel::Feature::kPartialBlocks], 0.0);  // skipped
+        }
+        // An index without a feature the model reads is refused, naming the feature.
+        const SceneIndex without(scene, 96, 96, mode, 0,
+                                 read & ~timemodel::FeatureSet().set(std::size_t(timemodel::Feature::kEdgePixels)));
+        try {
+            FrameScheduler refused(without, model->clone(), p);
+            ADD_FAILURE() << "no exception";
+        } catch (const std::invalid_argument& error) {
+            EXPECT_NE(std::string(error.what()).find("edge_pixels"), std::string::npos) << error.what();
+        }
+    }
+}
+
 }  // namespace
 }  // namespace lodopt::scheduler

@@ -16,6 +16,13 @@ std::vector<std::string> DongModel::coefficientNames() const {
     return {"triangles", "texture_bytes"};
 }
 
+FeatureSet DongModel::readFeatures() const {
+    if (!fitted()) return everyFeature();
+    FeatureSet read;
+    read.set(std::size_t(Feature::kTriangles)).set(std::size_t(Feature::kTextureBytes));
+    return read;
+}
+
 double DongModel::estimateCalibratedMs(const FrameFeatures& features) const {
     return mCoefficients[0] * features[Feature::kTriangles] + mCoefficients[1] * features[Feature::kTextureBytes];
 }

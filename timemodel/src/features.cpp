@@ -160,8 +160,25 @@ bool textured(const std::vector<scenes::Material>& materials, int material) {
     return material >= 0 && std::size_t(material) < materials.size() && materials[material].baseColorTexture >= 0;
 }
 
+// The work a FeatureTable may skip, from the features it needs.
+struct FeatureWork {
+    bool partialBlocks = true;  // the 4x4 block walk per triangle
+    bool depthPass = true;      // the software depth pass: the shaded features' shares
+};
+
+FeatureWork workFor(const FeatureSet& needed) {
+    FeatureWork work;
+    work.partialBlocks = contains(needed, Feature::kPartialBlocks) || contains(needed, Feature::kShadedPartialBlocks);
+    work.depthPass = contains(needed, Feature::kShadedPixels) || contains(needed, Feature::kTexturedPixels) ||
+                     contains(needed, Feature::kShadedEdgePixels) || contains(needed, Feature::kShadedPartialBlocks);
+    return work;
+}
+
+// `depthPassShare` is the object's share of fragments passing the depth test (0 when the depth
+// pass was skipped: the shaded features are then 0).
 FrameFeatures levelContribution(const scenes::Level& level, const std::vector<scenes::Material>& materials,
-                                const glm::mat4& modelViewProjection, int width, int height, double depthPassShare) {
+                                const glm::mat4& modelViewProjection, int width, int height, double depthPassShare,
+                                bool countPartialBlocks = true) {
     const scenes::LevelStats& stats = level.stats;
     FrameFeatures f;
     f[Feature::kVertices] = double(stats.vertices);
@@ -177,7 +194,7 @@ FrameFeatures levelContribution(const scenes::Level& level, const std::vector<sc
     double texturedRaster = 0.0;
     for (const scenes::Mesh& mesh : level.meshes) {
         const double before = raster.rasterPixels;
-        addRasterFeatures(mesh, modelViewProjection, width, height, raster);
+        addRasterFeatures(mesh, modelViewProjection, width, height, raster, countPartialBlocks);
         if (textured(materials, mesh.material)) texturedRaster += raster.rasterPixels - before;
     }
     f[Feature::kVisibleTriangles] = raster.visibleTriangles;
@@ -198,19 +215,21 @@ glm::mat4 viewProjectionMatrix(const scenes::Camera& camera, int width, int heig
 }  // namespace
 
 FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height,
-                           int depthPassCells) {
+                           int depthPassCells, const FeatureSet& needed) {
     assert(width > 0 && height > 0 && depthPassCells > 0);
     const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
     mFirstLevel.reserve(scene.objects.size() + 1);
+    const FeatureWork work = workFor(needed);
     const std::vector<double> shares =
-        detail::depthPassShares(scene, viewProjection, float(width) / float(height), depthPassCells);
+        work.depthPass ? detail::depthPassShares(scene, viewProjection, float(width) / float(height), depthPassCells)
+                       : std::vector<double>(scene.objects.size(), 0.0);
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const scenes::Object& object = scene.objects[o];
         mFirstLevel.push_back(static_cast<int>(mContributions.size()));
         const glm::mat4 modelViewProjection = viewProjection * object.transform;
         for (const scenes::Level& level : object.levels) {
-            mContributions.push_back(
-                levelContribution(level, scene.materials, modelViewProjection, width, height, shares[o]));
+            mContributions.push_back(levelContribution(level, scene.materials, modelViewProjection, width, height,
+                                                       shares[o], work.partialBlocks));
         }
     }
     mFirstLevel.push_back(static_cast<int>(mContributions.size()));  // end sentinel

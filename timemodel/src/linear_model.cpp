@@ -13,6 +13,13 @@ std::vector<std::string> LinearModel::coefficientNames() const {
     return names;
 }
 
+FeatureSet LinearModel::readFeatures() const {
+    if (!fitted()) return everyFeature();
+    FeatureSet read;
+    for (std::size_t k = 0; k < kFeatureCount; ++k) read[k] = mCoefficients[k + 1] != 0.0;
+    return read;
+}
+
 double LinearModel::estimateCalibratedMs(const FrameFeatures& features) const {
     double total = mCoefficients[0];
     for (std::size_t k = 0; k < kFeatureCount; ++k) total += mCoefficients[k + 1] * features.values[k];

@@ -118,9 +118,9 @@ double partialBlocks(const glm::dvec2* v, int n, double width, double height) {
 
 // Screen area in pixels of triangle (a, b, c) in clip space, clipped to the near plane and the
 // viewport; adds the length of its clipped edges that are not on the viewport border to `edges`
-// and its partly covered 4x4 blocks to `blocks`.
+// and its partly covered 4x4 blocks to `*blocks` (not counted when null).
 double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, double halfWidth,
-                            double halfHeight, double& edges, double& blocks) {
+                            double halfHeight, double& edges, double* blocks) {
     glm::vec4 polygon[4];
     int count = 0;
     const glm::vec4 in[3] = {a, b, c};
@@ -157,14 +157,14 @@ double triangleRasterPixels(const glm::vec4& a, const glm::vec4& b, const glm::v
     }
     if (twiceArea == 0.0 || !std::isfinite(twiceArea)) return 0.0;
     for (int i = 0; i < count; ++i) screen[i] += glm::dvec2(halfWidth, halfHeight);  // pixels from the corner
-    blocks += partialBlocks(screen, count, 2.0 * halfWidth, 2.0 * halfHeight);
+    if (blocks) *blocks += partialBlocks(screen, count, 2.0 * halfWidth, 2.0 * halfHeight);
     return 0.5 * std::abs(twiceArea);
 }
 
 }  // namespace
 
 void addRasterFeatures(const scenes::Mesh& mesh, const glm::mat4& modelViewProjection, int width, int height,
-                       RasterFeatures& sum) {
+                       RasterFeatures& sum, bool countPartialBlocks) {
     assert(width > 0 && height > 0);
     thread_local std::vector<glm::vec4> clip;
     thread_local std::vector<std::uint8_t> codes;
@@ -179,7 +179,7 @@ void addRasterFeatures(const scenes::Mesh& mesh, const glm::mat4& modelViewProje
         if (codes[a] & codes[b] & codes[c]) continue;  // trivially outside one plane
         sum.visibleTriangles += 1.0;
         sum.rasterPixels += triangleRasterPixels(clip[a], clip[b], clip[c], 0.5 * width, 0.5 * height, sum.edgePixels,
-                                                 sum.partialBlocks);
+                                                 countPartialBlocks ? &sum.partialBlocks : nullptr);
     }
 }
 

@@ -49,6 +49,16 @@ double WimmerModel::cpuMs(const FrameFeatures& f) const {
            mCoefficients[kCpuDrawCalls] * f[Feature::kDrawCalls];
 }
 
+FeatureSet WimmerModel::readFeatures() const {
+    if (!fitted()) return everyFeature();
+    FeatureSet read;
+    for (Feature f :
+         {Feature::kVertices, Feature::kPixels, Feature::kMatrices, Feature::kBoundingBoxes, Feature::kDrawCalls}) {
+        read.set(std::size_t(f));
+    }
+    return read;
+}
+
 double WimmerModel::estimateCalibratedMs(const FrameFeatures& features) const {
     return mCoefficients[kSystem] + std::max(cpuMs(features), gpuMs(features));
 }

@@ -22,8 +22,10 @@ using FrameTimeEstimator = std::function<double(const timemodel::FrameFeatures&)
 class TimeModelCost final : public optimizer::Cost {
 public:
     // Reads `setup` here only (the table keeps its own contributions); `estimator` returns
-    // finite milliseconds >= 0.
-    TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator);
+    // finite milliseconds >= 0 and reads only the features in `needed` (its model's
+    // readFeatures(): the table skips the work of the others).
+    TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator,
+                  const timemodel::FeatureSet& needed = timemodel::everyFeature());
 
     double predictMs(const optimizer::Combination& combination) const override;
     double deltaMs(const optimizer::Combination& combination, int variable, int newLevel) const override;

@@ -80,8 +80,10 @@ public:
     // `scene` must outlive the index (Exact mode reads its geometry every frame). `width`,
     // `height` > 0: the render size in pixels, as calibrated for the time model. Bounds mode
     // measures every object from canonical cameras here, on `threads` threads (0: one per
-    // core); the result does not depend on the count.
-    SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode, int threads = 0);
+    // core); the result does not depend on the count. `needed`: the features the time model
+    // reads (TimeModel::readFeatures; the others may be left 0, their work skipped).
+    SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode, int threads = 0,
+               const timemodel::FeatureSet& needed = timemodel::everyFeature());
     ~SceneIndex();
     SceneIndex(const SceneIndex&) = delete;
     SceneIndex& operator=(const SceneIndex&) = delete;
@@ -90,6 +92,7 @@ public:
     int width() const { return mWidth; }
     int height() const { return mHeight; }
     FeatureMode mode() const { return mMode; }
+    const timemodel::FeatureSet& neededFeatures() const { return mNeeded; }
     int objectCount() const { return int(mShapes.size()); }
     int levelCount(int object) const { return mFirstLevel[object + 1] - mFirstLevel[object]; }
     int maxLevelCount() const { return mMaxLevels; }
@@ -118,6 +121,7 @@ private:
     int mWidth;
     int mHeight;
     FeatureMode mMode;
+    timemodel::FeatureSet mNeeded;
     int mThreads = 0;
     int mMaxLevels = 1;
     std::vector<ObjectShape> mShapes;

@@ -128,7 +128,8 @@ struct FrameDecision {
 class FrameScheduler {
 public:
     // `index` (built for the scene and render size) must outlive the scheduler; `model` fitted.
-    // Throws std::invalid_argument for bad parameters.
+    // Throws std::invalid_argument for bad parameters, or when `model` reads a feature that
+    // `index` was built without (SceneIndex's `needed`).
     FrameScheduler(const SceneIndex& index, std::unique_ptr<timemodel::TimeModel> model,
                    SchedulerParameters parameters);
     ~FrameScheduler();

@@ -40,6 +40,7 @@
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <string>
@@ -75,6 +76,18 @@ inline constexpr std::size_t kFeatureCount = 16;
 const char* featureName(Feature feature);
 // All features in index order.
 const std::array<Feature, kFeatureCount>& allFeatures();
+
+// A set of features, indexed like Feature: what a reader (a time model, TimeModel::readFeatures)
+// needs. A FeatureTable built for a set skips the work of the features outside it where that
+// saves time (the 4x4 block walk for the two partial-block features, the depth pass for the
+// four shaded ones) and holds 0 for those; every feature in the set is exact.
+using FeatureSet = std::bitset<kFeatureCount>;
+inline FeatureSet everyFeature() {
+    return FeatureSet().set();
+}
+inline bool contains(const FeatureSet& set, Feature feature) {
+    return set.test(static_cast<std::size_t>(feature));
+}
 
 // Sums over a frame's drawn objects (see the file comment); every value >= 0, in its own
 // unit (count, bytes, pixels). Additive: the features of a frame are the sum of its parts.
@@ -119,9 +132,10 @@ struct RasterFeatures {
 };
 RasterFeatures rasterFeatures(const std::vector<scenes::Mesh>& meshes, const glm::mat4& modelViewProjection, int width,
                               int height);
-// Adds one mesh's raster features to `sum` (the vector form is this over its meshes, in order).
+// Adds one mesh's raster features to `sum` (the vector form is this over its meshes, in order);
+// without `countPartialBlocks` its partialBlocks stays as it was (the block walk skipped).
 void addRasterFeatures(const scenes::Mesh& mesh, const glm::mat4& modelViewProjection, int width, int height,
-                       RasterFeatures& sum);
+                       RasterFeatures& sum, bool countPartialBlocks = true);
 
 // Per-viewpoint table of feature contributions: build once per (scene, camera, size), then
 // query combinations. Holds no reference to the scene after construction. Building walks
@@ -130,10 +144,11 @@ class FeatureTable {
 public:
     // `width`, `height` > 0: the render size in pixels. `depthPassCells`: the longer side of
     // the software depth pass's grid that gives the shaded-fragment shares (kDepthPassCells; a
-    // caller that only needs rough shares of small objects may take fewer).
+    // caller that only needs rough shares of small objects may take fewer). `needed`: the
+    // features to compute (FeatureSet: the others may be left 0), e.g. a model's readFeatures().
     static constexpr int kDepthPassCells = 128;
     FeatureTable(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height,
-                 int depthPassCells = kDepthPassCells);
+                 int depthPassCells = kDepthPassCells, const FeatureSet& needed = everyFeature());
 
     int objectCount() const { return static_cast<int>(mFirstLevel.size()) - 1; }
     int levelCount(int object) const;

@@ -79,6 +79,10 @@ public:
 
     // Predicted render time in ms (>= 0; negative predictions of a bad fit clamp to 0).
     double estimateMs(const FrameFeatures& features) const;
+    // The features estimateMs reads with these coefficients (every one while unfitted): a
+    // FeatureTable built for this set predicts the same (FeatureSet). Feedback scales every
+    // coefficient alike, so it never changes the set; setCoefficients and fit may.
+    virtual FeatureSet readFeatures() const = 0;
 
     // Effective coefficients: the calibrated ones times the feedback scale.
     std::vector<double> coefficients() const;
@@ -117,6 +121,7 @@ public:
     std::string name() const override { return "dong"; }
     std::vector<std::string> coefficientNames() const override;
     std::unique_ptr<TimeModel> clone() const override { return std::make_unique<DongModel>(*this); }
+    FeatureSet readFeatures() const override;  // triangles, texture bytes
 
 private:
     double estimateCalibratedMs(const FrameFeatures& features) const override;
@@ -129,6 +134,7 @@ public:
     std::string name() const override { return "wimmer"; }
     std::vector<std::string> coefficientNames() const override;
     std::unique_ptr<TimeModel> clone() const override { return std::make_unique<WimmerModel>(*this); }
+    FeatureSet readFeatures() const override;  // vertices, pixels, matrices, bounding boxes, draw calls
     // The two terms of the max for a frame (without RT_sys), calibrated coefficients.
     double cpuMs(const FrameFeatures& features) const;
     double gpuMs(const FrameFeatures& features) const;
@@ -144,6 +150,7 @@ public:
     // "intercept_ms", then featureName() of every feature in index order.
     std::vector<std::string> coefficientNames() const override;
     std::unique_ptr<TimeModel> clone() const override { return std::make_unique<LinearModel>(*this); }
+    FeatureSet readFeatures() const override;  // the features with a coefficient other than 0
 
 private:
     double estimateCalibratedMs(const FrameFeatures& features) const override;
