@@ -286,9 +286,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     }
 
     const auto setupStart = std::chrono::steady_clock::now();
-    // Features the model does not read are skipped (left 0) in every table the index builds.
-    const timemodel::FeatureSet needed = estimator.model->readFeatures();
-    const scheduler::SceneIndex index(scene, settings.width, settings.height, mode, 0, needed);
+    const scheduler::SceneIndex index(scene, settings.width, settings.height, mode, 0, estimator.model->readFeatures());
     scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
     const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
 
@@ -355,8 +353,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         }
         if (options.checkFeatures) {
             // The same levels with the time model's exact features (walks the geometry).
-            const timemodel::FeatureTable table(scene, camera, settings.width, settings.height,
-                                                timemodel::FeatureTable::kDepthPassCells, needed);
+            const timemodel::FeatureTable table(scene, camera, settings.width, settings.height);
             row.exactPredictedMs = frameScheduler.model().estimateMs(table.features(decision.levels));
         }
         if (renderer) {

@@ -73,7 +73,7 @@ FrameScheduler::FrameScheduler(const SceneIndex& index, std::unique_ptr<timemode
     : mIndex(index), mModel(std::move(model)), mParameters(std::move(parameters)), mWork(std::make_unique<Work>()) {
     assert(mModel && mModel->fitted());
     validateParameters(mParameters, index.objectCount());
-    // The index skipped the work of the features outside its set (left 0): the model must not read them.
+    // The index skipped the features outside its set (left 0): the model must not read them.
     const timemodel::FeatureSet missing = mModel->readFeatures() & ~index.neededFeatures();
     for (timemodel::Feature feature : timemodel::allFeatures()) {
         if (timemodel::contains(missing, feature)) {
