@@ -51,12 +51,6 @@ struct CalibrateOptions {
     OutputOptions output;
 };
 
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 void timePass(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
               int repeats, int warmup, timemodel::PassTimes& out) {
     const DrawTimes times = timeDraws(renderer, combination, camera, repeats, warmup);
@@ -131,11 +125,10 @@ void runCalibrate(const CalibrateOptions& options) {
         ++passes;
     }
 
-    std::vector<bool> heldOut(count), fitting(count);
-    for (std::size_t i = 0; i < count; ++i) {
-        heldOut[i] = plan.viewpoints[plan.samples[i].viewpoint].heldOut;
-        fitting[i] = !heldOut[i];
-    }
+    std::vector<bool> heldOut(count);
+    for (std::size_t i = 0; i < count; ++i) heldOut[i] = plan.viewpoints[plan.samples[i].viewpoint].heldOut;
+    std::vector<bool> fitting = heldOut;
+    fitting.flip();
     const bool autoClock = options.clock == timemodel::kAutoClock;
     const timemodel::ClockChoice choice = timemodel::chooseMostRepeatableClock(timings, fitting);
     const std::string clock = autoClock ? choice.clock : options.clock;
@@ -151,13 +144,11 @@ void runCalibrate(const CalibrateOptions& options) {
         recorded.wallMinMedianMs = timemodel::timeFromPasses("wall-min-median", t);
         recorded.wallMedianMs = timemodel::timeFromPasses("wall-median", t);
         recorded.cpuMs = timemodel::timeFromPasses("cpu", t);
-        const std::vector<double>& perPass = timemodel::perPassValues(clock, t);
         timemodel::Sample& sample = recorded.sample;
         sample.features = tables[planned.viewpoint].features(planned.combination);
-        sample.measuredMs = timemodel::clockStatistic(clock, perPass);
+        sample.measuredMs = timemodel::timeOnClock(recorded, clock);
         sample.viewpoint = planned.viewpoint;
-        const auto [low, high] = std::minmax_element(perPass.begin(), perPass.end());
-        if (sample.measuredMs > 0.0) spreads.push_back((*high - *low) / median(perPass));
+        if (sample.measuredMs > 0.0) spreads.push_back(timemodel::passSpread(timemodel::perPassValues(clock, t)));
         recorded.heldOut = heldOut[i];
         (recorded.heldOut ? heldOutSamples : fitSamples).push_back(sample);
         profile.samples.push_back(recorded);

@@ -41,6 +41,7 @@ TEST(Timing, EachClockReducesItsOwnPerPassValues) {
     EXPECT_DOUBLE_EQ(timemodel::timeFromPasses("cpu", times), 3.0 * 10.5);
     EXPECT_DOUBLE_EQ(timemodel::clockStatistic("wall-min-median", {4.0, 1.0, 3.0}), 3.0);
     EXPECT_EQ(timemodel::timeFromPasses("wall-min", timemodel::PassTimes{}), 0.0);
+    EXPECT_DOUBLE_EQ(timemodel::passSpread(times.leastWall), (12.0 - 9.0) / 10.5);  // (greatest − least) / median
 }
 
 TEST(Timing, SplitHalfComparesTheEvenPassesWithTheOddOnes) {

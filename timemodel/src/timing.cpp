@@ -34,6 +34,12 @@ double timeFromPasses(const std::string& clock, const PassTimes& times) {
     return perPass.empty() ? 0.0 : clockStatistic(clock, perPass);
 }
 
+double passSpread(const std::vector<double>& perPass) {
+    assert(!perPass.empty());
+    const auto [low, high] = std::minmax_element(perPass.begin(), perPass.end());
+    return (*high - *low) / median(perPass);
+}
+
 ErrorStats splitHalfRepeatability(const std::string& clock, const std::vector<PassTimes>& times,
                                   const std::vector<bool>& include) {
     assert(include.size() == times.size());

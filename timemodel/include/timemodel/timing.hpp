@@ -40,6 +40,9 @@ double clockStatistic(const std::string& clock, const std::vector<double>& perPa
 // The sample's time on `clock` from all its passes; 0 with no pass.
 double timeFromPasses(const std::string& clock, const PassTimes& times);
 
+// Spread of `perPass` (non-empty, median > 0): (greatest − least) / median.
+double passSpread(const std::vector<double>& perPass);
+
 // Split-half repeatability on `clock` over the samples i with include[i] (include.size() ==
 // times.size()): |even − odd| / all per sample, summarized; samples with fewer than two passes
 // or a time ≤ 0 are skipped (count 0 when none is left).
