@@ -389,7 +389,8 @@ std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewC
         throw UsageError(error.what());
     }
     warnings = timemodel::profileWarnings(profile, prepared.renderer->glRendererString(), prepared.settings.width,
-                                          prepared.settings.height, timemodel::describeMachine());
+                                          prepared.settings.height, timemodel::describeMachine(),
+                                          renderer::shadingName(prepared.settings.shading));
     std::vector<TimeModelRow> rows;
     for (const timemodel::ModelResult& model : profile.models) {
         if (!model.fitted) continue;

@@ -39,6 +39,15 @@ std::vector<int> parseIntList(const std::string& text, const std::string& what) 
     return values;
 }
 
+void addShadingOption(CLI::App& command, std::string& shading) {
+    command
+        .add_option("--shading", shading,
+                    "lambert (the papers': base color, Lambert + ambient) or pbr (glTF metallic-roughness, "
+                    "alpha modes, culling, tone mapped)")
+        ->check(CLI::IsMember({"lambert", "pbr"}))
+        ->capture_default_str();
+}
+
 void parseSize(const std::string& text, int& width, int& height) {
     int w = 0, h = 0;
     char x = 0, extra = 0;

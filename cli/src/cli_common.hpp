@@ -57,6 +57,8 @@ std::vector<int> tuningFolds(const std::vector<bool>& heldOut, int folds);
 int firstBestAbove(double floor, const std::vector<double>& scores, double margin = 1e-12);
 // Parses "512x512".
 void parseSize(const std::string& text, int& width, int& height);
+// --shading lambert|pbr (docs/renderer.md "Shading"); CLI11 refuses any other value.
+void addShadingOption(CLI::App& command, std::string& shading);
 
 // Each command adds itself as a subcommand; its callback throws on failure and main maps
 // the exception to an exit code (UsageError, scenes::SceneError → 2; anything else → 1).

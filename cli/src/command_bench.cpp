@@ -95,6 +95,7 @@ nlohmann::json checkpointIdentity(const BenchOptions& bench) {
             {"seed", o.seed},
             {"budget-ms", o.budgetMs > 0.0 ? nlohmann::json(o.budgetMs) : nlohmann::json()},
             {"size", o.size},
+            {"shading", o.shading},
             {"weights", o.weights},
             {"profile", o.profile},
             {"model", o.model},
@@ -312,6 +313,7 @@ void runBench(const BenchOptions& bench) {
         {"scene", prepared.scene.name},
         {"view", context.setup->camera().name},
         {"size", options.size},
+        {"shading", options.shading},
         {"budget_ms", options.budgetMs},
         {"budget_source", budgetGiven ? "--budget-ms" : "midway between the all-coarsest and all-finest prediction"},
         {"time_model", prepared.timeModelName},
@@ -399,6 +401,7 @@ void addBenchCommand(CLI::App& app) {
                      "all-coarsest and the all-finest prediction)")
         ->check(CLI::PositiveNumber);
     command->add_option("--size", o.size, "Render size WIDTHxHEIGHT")->capture_default_str();
+    addShadingOption(*command, o.shading);
     command->add_option("--threads", o.threads, "Evaluation threads (default: all cores)")->check(CLI::Range(1, 256));
     command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();
     command->add_option("--profile", o.profile, "Device profile from 'lodopt calibrate' (default: shipped)");

@@ -40,6 +40,7 @@ struct CalibrateOptions {
     std::uint64_t seed = 1;
     std::uint32_t sceneSeed = 1;
     std::string size = "512x512";
+    std::string shading = "lambert";
     int jitter = 3;
     int rounds = 6;
     int maxRounds = 25;
@@ -79,6 +80,7 @@ void runCalibrate(const CalibrateOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     renderer::RenderSettings settings;
     parseSize(options.size, settings.width, settings.height);
+    settings.shading = renderer::parseShading(options.shading);
     const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
 
     timemodel::CalibrationOptions planOptions;
@@ -199,6 +201,7 @@ void runCalibrate(const CalibrateOptions& options) {
     profile.glRenderer = renderer.glRendererString();
     profile.glVersion = renderer.glVersionString();
     profile.width = settings.width;
+    profile.shading = options.shading;
     profile.height = settings.height;
     profile.scene = scene.name;
     profile.sceneSeed = options.sceneSeed;
@@ -256,6 +259,7 @@ void runCalibrate(const CalibrateOptions& options) {
                    {"scene", scene.name},
                    {"width", settings.width},
                    {"height", settings.height},
+                   {"shading", options.shading},
                    {"renderer", profile.glRenderer},
                    {"cpu_model", profile.machine.cpuModel},
                    {"cores", profile.machine.cores},
@@ -353,6 +357,7 @@ void addCalibrateCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--scene-seed", options->sceneSeed, "Seed of a built-in scene")->capture_default_str();
     command->add_option("--size", options->size, "WIDTHxHEIGHT of the timed frames")->capture_default_str();
+    addShadingOption(*command, options->shading);
     command->add_option("--jitter", options->jitter, "Extra viewpoints around each named view")
         ->capture_default_str()
         ->check(CLI::Range(0, 100));

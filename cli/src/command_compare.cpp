@@ -114,6 +114,7 @@ nlohmann::json checkpointIdentity(const OptimizeOptions& options, std::int64_t e
             {"budget-ms", options.budgetMs},
             {"evals", evaluations},
             {"size", options.size},
+            {"shading", options.shading},
             {"eval", options.evalPath},
             {"weights", options.weights},
             {"profile", options.profile},

@@ -40,6 +40,7 @@ void addOptimizeOptions(CLI::App& command, OptimizeOptions& options) {
     command.add_option("--seed", options.seed, "Random seed (results are deterministic for a seed)")
         ->capture_default_str();
     command.add_option("--size", options.size, "Render size WIDTHxHEIGHT")->capture_default_str();
+    addShadingOption(command, options.shading);
     command.add_option("--eval", options.evalPath, "Evaluation path: fast (layers) or full (render each)")
         ->check(CLI::IsMember({"fast", "full"}))
         ->capture_default_str();

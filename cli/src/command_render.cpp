@@ -14,6 +14,7 @@ void addRenderCommand(CLI::App& app) {
         std::string view = "0";
         std::string levels;
         std::string size = "512x512";
+        std::string shading = "lambert";
         std::string out = "render.png";
         std::string depthOut;
         std::uint32_t seed = 1;
@@ -28,6 +29,7 @@ void addRenderCommand(CLI::App& app) {
     command->add_option("--levels", options->levels,
                         "One level per object, comma-separated (-1 = not drawn); default all 0 (the reference)");
     command->add_option("--size", options->size, "WIDTHxHEIGHT")->capture_default_str();
+    addShadingOption(*command, options->shading);
     command->add_option("--out", options->out, "Color image: .png, .jpg or .ppm")->capture_default_str();
     command->add_option("--depth-out", options->depthOut, "Also write depth as floats: .exr or .pfm");
     command->add_option("--seed", options->seed, "Seed of a built-in scene");
@@ -44,6 +46,7 @@ void addRenderCommand(CLI::App& app) {
         }
         renderer::RenderSettings settings;
         parseSize(options->size, settings.width, settings.height);
+        settings.shading = renderer::parseShading(options->shading);
         scenes::Scene scene = scenes::loadScene(options->scene, options->seed);
         const int view = scenes::findView(scene, options->view);
         scenes::Combination combination = scenes::referenceCombination(scene);
@@ -62,6 +65,7 @@ void addRenderCommand(CLI::App& app) {
                                      {"levels", combination},
                                      {"width", settings.width},
                                      {"height", settings.height},
+                                     {"shading", options->shading},
                                      {"out", options->out},
                                      {"renderer", renderer.glRendererString()},
                                      {"gl_version", renderer.glVersionString()}};

@@ -77,6 +77,7 @@ nlohmann::json settingsSignature(const TuneOptions& o) {
     return {{"scene", p.scene},
             {"seed", p.seed},
             {"size", p.size},
+            {"shading", p.shading},
             {"budget-ms", p.budgetMs},
             {"algo", p.algorithm},
             {"evals", p.maxEvaluations},
@@ -424,6 +425,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
         {"scene", prepared.scene.name},
         {"budget_ms", options.optimize.budgetMs},
         {"size", options.optimize.size},
+        {"shading", options.optimize.shading},
         {"views", options.views},
         {"held_out_views", holdout},
         {"path", options.path},
@@ -530,6 +532,7 @@ void addTuneCommand(CLI::App& app) {
     command->add_option("--seed", o.seed, "Seed of the viewpoints, the optimizer and the search")
         ->capture_default_str();
     command->add_option("--size", o.size, "Render size WIDTHxHEIGHT")->capture_default_str();
+    addShadingOption(*command, o.shading);
     command->add_option("--threads", o.threads, "Evaluation threads")->check(CLI::Range(1, 256));
     command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();
     command->add_option("--profile", o.profile, "Device profile from 'lodopt calibrate' (default: shipped)");

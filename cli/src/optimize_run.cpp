@@ -29,6 +29,7 @@ void checkAlgorithmName(const std::string& name) {
 PreparedScene prepareScene(const OptimizeOptions& options) {
     PreparedScene prepared;
     parseSize(options.size, prepared.settings.width, prepared.settings.height);
+    prepared.settings.shading = renderer::parseShading(options.shading);
     std::vector<int> weights = {};
     {
         std::vector<double> parsed;
@@ -298,6 +299,7 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
         {"wall_seconds", setupSeconds + searchSeconds},
         {"width", setup.width()},
         {"height", setup.height()},
+        {"shading", options.shading},
     };
     run.setup = std::move(context.setup);
     run.result = std::move(result);

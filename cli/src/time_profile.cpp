@@ -72,8 +72,9 @@ TimeEstimator loadTimeEstimator(const std::string& profilePath, const std::strin
     } catch (const timemodel::TimeModelError& error) {
         throw UsageError(error.what());
     }
-    for (const std::string& warning : timemodel::profileWarnings(profile, glRenderer, settings.width, settings.height,
-                                                                 timemodel::describeMachine())) {
+    for (const std::string& warning :
+         timemodel::profileWarnings(profile, glRenderer, settings.width, settings.height, timemodel::describeMachine(),
+                                    renderer::shadingName(settings.shading))) {
         warnings << "lodopt: warning: " << source << ": " << warning << "\n";
     }
     TimeEstimator estimator;

@@ -41,11 +41,32 @@ bool outsideFrustum(const scenes::Object& object, const glm::mat4& viewProjectio
     return counts.allOutsideOnePlane();
 }
 
+// A blended surface's layer holds no depth and its color depends on what is behind it, so
+// neither the skip analysis nor the compositing can stand for it: refuse rather than search a
+// scene whose blended objects would be judged invisible.
+void refuseBlendedObjects(const scenes::Scene& scene) {
+    for (const scenes::Object& object : scene.objects) {
+        for (const scenes::Level& level : object.levels) {
+            for (const scenes::Mesh& mesh : level.meshes) {
+                if (mesh.material >= 0 &&
+                    scene.materials[std::size_t(mesh.material)].alphaMode == scenes::AlphaMode::Blend) {
+                    throw scenes::SceneError(scene.name + ": object '" + object.name + "' uses material '" +
+                                             scene.materials[std::size_t(mesh.material)].name +
+                                             "' with alphaMode BLEND, which the search cannot score with "
+                                             "--shading pbr yet (render it with lodopt render, or search with "
+                                             "--shading lambert)");
+                }
+            }
+        }
+    }
+}
+
 }  // namespace
 
 ViewSetup::ViewSetup(const scenes::Scene& scene, const scenes::Camera& camera, renderer::Renderer& renderer)
     : mScene(scene), mCamera(camera), mClearColor(renderer.settings().clearColor) {
     const auto start = std::chrono::steady_clock::now();
+    if (renderer.settings().shading == renderer::Shading::Pbr) refuseBlendedObjects(scene);
     mReference = renderer.render(scenes::referenceCombination(scene), camera);
     const int width = mReference.width, height = mReference.height;
     const std::size_t pixels = std::size_t(width) * height;

@@ -1,88 +1,19 @@
 // The OpenGL front of the renderer: uploads a scene once, draws combinations into an FBO.
 #include "renderer/renderer.hpp"
 
-#include <GL/gl.h>
-#include <GL/glext.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <glm/gtc/type_ptr.hpp>
 #include <limits>
 
-#include <glm/gtc/type_ptr.hpp>
+#include "gl_common.hpp"
+#include "pbr_pass.hpp"
+#include "shaders.hpp"
 
 namespace lodopt::renderer {
 namespace {
-
-const char* kVertexShader = R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aNormal;
-layout(location = 2) in vec2 aUv;
-uniform mat4 uModelViewProjection;
-uniform mat3 uNormalMatrix;
-out vec3 vNormal;
-out vec2 vUv;
-void main() {
-    gl_Position = uModelViewProjection * vec4(aPosition, 1.0);
-    vNormal = uNormalMatrix * aNormal;
-    vUv = aUv;
-}
-)";
-
-// Lambert + ambient, lit from both sides: leaf cards and open meshes have no back side.
-const char* kFragmentShader = R"(#version 330 core
-in vec3 vNormal;
-in vec2 vUv;
-uniform vec4 uBaseColor;
-uniform sampler2D uBaseColorTexture;
-uniform bool uHasTexture;
-uniform vec3 uToLight;
-uniform float uAmbient;
-out vec4 fragColor;
-void main() {
-    float len = length(vNormal);
-    vec3 n = len > 1e-20 ? vNormal / len : vec3(0.0, 1.0, 0.0);
-    if (!gl_FrontFacing) n = -n;
-    float diffuse = max(dot(n, uToLight), 0.0);
-    vec4 color = uBaseColor;
-    if (uHasTexture) color *= texture(uBaseColorTexture, vUv);
-    fragColor = vec4(clamp(color.rgb * (uAmbient + (1.0 - uAmbient) * diffuse), 0.0, 1.0), 1.0);
-}
-)";
-
-void checkGl(const char* where) {
-    GLenum error = glGetError();
-    if (error == GL_NO_ERROR) return;
-    const char* name = error == GL_OUT_OF_MEMORY ? "GL_OUT_OF_MEMORY"
-                       : error == GL_INVALID_OPERATION ? "GL_INVALID_OPERATION"
-                       : error == GL_INVALID_VALUE ? "GL_INVALID_VALUE"
-                       : error == GL_INVALID_ENUM ? "GL_INVALID_ENUM"
-                       : error == GL_INVALID_FRAMEBUFFER_OPERATION ? "GL_INVALID_FRAMEBUFFER_OPERATION"
-                                                                     : "unknown GL error";
-    throw RenderError(std::string("OpenGL error ") + name + " in " + where);
-}
-
-GLuint compileShader(GLenum type, const char* source) {
-    GLuint shader = glCreateShader(type);
-    glShaderSource(shader, 1, &source, nullptr);
-    glCompileShader(shader);
-    GLint ok = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = {};
-        glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-        glDeleteShader(shader);
-        throw RenderError(std::string("shader compilation failed: ") + log);
-    }
-    return shader;
-}
-
-struct GpuMesh {
-    GLuint vertexArray = 0, vertexBuffer = 0, indexBuffer = 0;
-    GLsizei indexCount = 0;
-    int material = -1;
-};
 
 // The pixels (top-left origin) where `object` at `level` can put fragments: the rectangle of
 // its vertices' projections, grown by 2 pixels (rasterization rules, the vertex shader's own
@@ -131,6 +62,16 @@ PixelRect projectedRect(const scenes::Object& object, int level, const glm::mat4
 
 }  // namespace
 
+const char* shadingName(Shading shading) {
+    return shading == Shading::Pbr ? "pbr" : "lambert";
+}
+
+Shading parseShading(const std::string& name) {
+    if (name == "lambert") return Shading::Lambert;
+    if (name == "pbr") return Shading::Pbr;
+    throw std::invalid_argument("unknown shading '" + name + "' (expected lambert or pbr)");
+}
+
 struct Renderer::Impl {
     const scenes::Scene& scene;
     RenderSettings settings;
@@ -138,8 +79,9 @@ struct Renderer::Impl {
     GLuint program = 0, framebuffer = 0, colorBuffer = 0, depthBuffer = 0;
     GLint uModelViewProjection = -1, uNormalMatrix = -1, uBaseColor = -1, uHasTexture = -1, uToLight = -1,
           uAmbient = -1, uTexture = -1;
-    std::vector<GLuint> textures;
-    std::vector<std::vector<std::vector<GpuMesh>>> meshes;  // [object][level][mesh]
+    std::unique_ptr<PbrPass> pbrPass;  // Shading::Pbr only
+    std::vector<GLuint> textures;      // Lambert: per scene texture, read as stored
+    gl::GpuMeshes meshes;
     std::vector<std::uint8_t> readbackColor;
     std::vector<float> readbackDepth;
     std::vector<std::uint8_t> layerColor;  // renderLayer's bounded readback
@@ -148,18 +90,14 @@ struct Renderer::Impl {
 
     Impl(const scenes::Scene& s, RenderSettings st) : scene(s), settings(st) {}
 
+    bool isPbr() const { return settings.shading == Shading::Pbr; }
+
     void createProgram() {
-        GLuint vertex = compileShader(GL_VERTEX_SHADER, kVertexShader);
-        GLuint fragment = compileShader(GL_FRAGMENT_SHADER, kFragmentShader);
-        program = glCreateProgram();
-        glAttachShader(program, vertex);
-        glAttachShader(program, fragment);
-        glLinkProgram(program);
-        glDeleteShader(vertex);
-        glDeleteShader(fragment);
-        GLint ok = 0;
-        glGetProgramiv(program, GL_LINK_STATUS, &ok);
-        if (!ok) throw RenderError("shader program link failed");
+        if (isPbr()) {
+            pbrPass = std::make_unique<PbrPass>(scene, settings);
+            return;
+        }
+        program = gl::linkProgram(shaders::kLambertVertex, shaders::kLambertFragment);
         uModelViewProjection = glGetUniformLocation(program, "uModelViewProjection");
         uNormalMatrix = glGetUniformLocation(program, "uNormalMatrix");
         uBaseColor = glGetUniformLocation(program, "uBaseColor");
@@ -180,29 +118,17 @@ struct Renderer::Impl {
         glBindRenderbuffer(GL_RENDERBUFFER, depthBuffer);
         glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, settings.width, settings.height);
         glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer);
-        checkGl("framebuffer allocation");
+        gl::checkGl("framebuffer allocation");
         if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
             throw RenderError("OpenGL framebuffer of " + std::to_string(settings.width) + "x" +
                               std::to_string(settings.height) + " is incomplete");
         }
     }
 
+    // Lambert reads every texture as stored, as it always has; the PBR pass uploads its own.
     void uploadTextures() {
-        for (const scenes::Texture& texture : scene.textures) {
-            GLuint id = 0;
-            glGenTextures(1, &id);
-            glBindTexture(GL_TEXTURE_2D, id);
-            glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture.width, texture.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                         texture.rgba.data());
-            glGenerateMipmap(GL_TEXTURE_2D);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-            textures.push_back(id);
-            checkGl(("texture upload '" + texture.name + "'").c_str());
-        }
+        if (isPbr()) return;
+        for (const scenes::Texture& texture : scene.textures) textures.push_back(gl::uploadTexture(texture, GL_RGBA8));
     }
 
     void uploadMeshes() {
@@ -214,16 +140,24 @@ struct Renderer::Impl {
             for (std::size_t l = 0; l < object.levels.size(); ++l) {
                 for (const scenes::Mesh& mesh : object.levels[l].meshes) {
                     if (mesh.indices.empty()) continue;
-                    GpuMesh gpu;
+                    gl::GpuMesh gpu;
                     gpu.material = mesh.material;
                     gpu.indexCount = static_cast<GLsizei>(mesh.indices.size());
+                    gpu.hasTangents = mesh.tangents.size() == mesh.positions.size();
+                    // Lambert reads position, normal and UV; PBR every attribute (defaults: white, no tangent).
+                    const int floatsPerVertex = isPbr() ? 18 : 8;
                     interleaved.clear();
-                    interleaved.reserve(mesh.positions.size() * 8);
+                    interleaved.reserve(mesh.positions.size() * floatsPerVertex);
                     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
                         const glm::vec3& p = mesh.positions[v];
                         const glm::vec3 n = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f, 1.0f, 0.0f);
                         const glm::vec2 uv = v < mesh.uvs.size() ? mesh.uvs[v] : glm::vec2(0.0f);
                         interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y});
+                        if (!isPbr()) continue;
+                        const glm::vec2 uv1 = v < mesh.uvs1.size() ? mesh.uvs1[v] : glm::vec2(0.0f);
+                        const glm::vec4 t = v < mesh.tangents.size() ? mesh.tangents[v] : glm::vec4(0.0f);
+                        const glm::vec4 c = v < mesh.colors.size() ? mesh.colors[v] : glm::vec4(1.0f);
+                        interleaved.insert(interleaved.end(), {uv1.x, uv1.y, t.x, t.y, t.z, t.w, c.r, c.g, c.b, c.a});
                     }
                     glGenVertexArrays(1, &gpu.vertexArray);
                     glBindVertexArray(gpu.vertexArray);
@@ -235,15 +169,22 @@ struct Renderer::Impl {
                     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.indexBuffer);
                     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
                                  mesh.indices.data(), GL_STATIC_DRAW);
-                    const GLsizei stride = 8 * sizeof(float);
-                    glEnableVertexAttribArray(0);
-                    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(0));
-                    glEnableVertexAttribArray(1);
-                    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(3 * sizeof(float)));
-                    glEnableVertexAttribArray(2);
-                    glVertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(6 * sizeof(float)));
+                    const GLsizei stride = floatsPerVertex * sizeof(float);
+                    auto attribute = [&](GLuint location, GLint components, int offsetFloats) {
+                        glEnableVertexAttribArray(location);
+                        glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, stride,
+                                              reinterpret_cast<void*>(std::size_t(offsetFloats) * sizeof(float)));
+                    };
+                    attribute(shaders::kPosition, 3, 0);
+                    attribute(shaders::kNormal, 3, 3);
+                    attribute(shaders::kUv0, 2, 6);
+                    if (isPbr()) {
+                        attribute(shaders::kUv1, 2, 8);
+                        attribute(shaders::kTangent, 4, 10);
+                        attribute(shaders::kColor, 4, 14);
+                    }
                     glBindVertexArray(0);
-                    checkGl(("mesh upload of object '" + object.name + "'").c_str());
+                    gl::checkGl(("mesh upload of object '" + object.name + "'").c_str());
                     meshes[o][l].push_back(gpu);
                 }
             }
@@ -277,6 +218,17 @@ struct Renderer::Impl {
         const glm::mat4 viewProjection =
             scenes::projectionMatrix(camera, float(settings.width) / float(settings.height)) *
             scenes::viewMatrix(camera);
+        if (isPbr()) {
+            pbrPass->draw(combination, camera, viewProjection, meshes);
+        } else {
+            drawLambert(combination, viewProjection);
+        }
+        glBindVertexArray(0);
+        glDisable(GL_SCISSOR_TEST);
+        gl::checkGl("draw");
+    }
+
+    void drawLambert(const scenes::Combination& combination, const glm::mat4& viewProjection) {
         const glm::vec3 toLight = -glm::normalize(settings.lightDirection);
         glUniform3fv(uToLight, 1, glm::value_ptr(toLight));
         glUniform1f(uAmbient, settings.ambient);
@@ -290,12 +242,12 @@ struct Renderer::Impl {
             const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
             glUniformMatrix4fv(uModelViewProjection, 1, GL_FALSE, glm::value_ptr(mvp));
             glUniformMatrix3fv(uNormalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-            for (const GpuMesh& mesh : meshes[o][level]) {
+            for (const gl::GpuMesh& mesh : meshes[o][level]) {
                 glm::vec4 color(1.0f);
                 int texture = -1;
                 if (mesh.material >= 0) {
                     color = scene.materials[mesh.material].baseColorFactor;
-                    texture = scene.materials[mesh.material].baseColorTexture;
+                    texture = scene.materials[mesh.material].baseColorTexture.texture;
                 }
                 glUniform4fv(uBaseColor, 1, glm::value_ptr(color));
                 glUniform1i(uHasTexture, texture >= 0 ? 1 : 0);
@@ -304,9 +256,6 @@ struct Renderer::Impl {
                 glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
             }
         }
-        glBindVertexArray(0);
-        glDisable(GL_SCISSOR_TEST);
-        checkGl("draw");
     }
 
     // Reads `rect` (top-left origin, inside the frame) of color and depth into `color` and
@@ -318,7 +267,7 @@ struct Renderer::Impl {
         glPixelStorei(GL_PACK_ALIGNMENT, 1);
         glReadPixels(rect.x0, settings.height - rect.y1, w, h, GL_RGBA, GL_UNSIGNED_BYTE, readbackColor.data());
         glReadPixels(rect.x0, settings.height - rect.y1, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, readbackDepth.data());
-        checkGl("glReadPixels");
+        gl::checkGl("glReadPixels");
         color.resize(readbackColor.size());
         depth.resize(readbackDepth.size());
         for (int y = 0; y < h; ++y) {
@@ -361,13 +310,14 @@ Renderer::~Renderer() {
     mImpl->platform->makeCurrent();
     for (auto& object : mImpl->meshes) {
         for (auto& level : object) {
-            for (GpuMesh& mesh : level) {
+            for (gl::GpuMesh& mesh : level) {
                 glDeleteBuffers(1, &mesh.vertexBuffer);
                 glDeleteBuffers(1, &mesh.indexBuffer);
                 glDeleteVertexArrays(1, &mesh.vertexArray);
             }
         }
     }
+    mImpl->pbrPass.reset();
     if (!mImpl->textures.empty()) glDeleteTextures(GLsizei(mImpl->textures.size()), mImpl->textures.data());
     glDeleteRenderbuffers(1, &mImpl->colorBuffer);
     glDeleteRenderbuffers(1, &mImpl->depthBuffer);

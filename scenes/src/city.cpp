@@ -93,7 +93,7 @@ CityMaterials addCityMaterials(Scene& scene, std::uint32_t seed) {
         return int(scene.textures.size() - 1);
     };
     auto addMaterial = [&](std::string name, glm::vec3 color, int texture) {
-        scene.materials.push_back({std::move(name), glm::vec4(color, 1.0f), texture});
+        scene.materials.push_back(diffuseMaterial(std::move(name), color, texture));
         return int(scene.materials.size() - 1);
     };
     const int wall = addTexture(procedural::makePlasterAndWindowTexture("plaster_window_bay", 64, seed));

@@ -81,7 +81,7 @@ std::array<forest::TreeMaterials, forest::kSpeciesCount> addForestMaterials(Scen
         return int(scene.textures.size() - 1);
     };
     auto addMaterial = [&](std::string name, glm::vec3 color, int texture) {
-        scene.materials.push_back({std::move(name), glm::vec4(color, 1.0f), texture});
+        scene.materials.push_back(diffuseMaterial(std::move(name), color, texture));
         return int(scene.materials.size() - 1);
     };
     std::array<forest::TreeMaterials, forest::kSpeciesCount> result;

@@ -243,10 +243,25 @@ DecodedPrimitive decodePrimitive(const tinygltf::Model& model, int meshIndex, in
         out.normals.resize(vertexCount);
         std::memcpy(out.normals.data(), normals.data(), normals.size() * sizeof(float));
     }
-    std::vector<float> uvs = readAttribute("TEXCOORD_0", 2);
-    if (!uvs.empty()) {
-        out.uvs.resize(vertexCount);
-        std::memcpy(out.uvs.data(), uvs.data(), uvs.size() * sizeof(float));
+    auto copyInto = [&](auto& target, const std::vector<float>& values) {
+        if (values.empty()) return;
+        target.resize(vertexCount);
+        std::memcpy(target.data(), values.data(), values.size() * sizeof(float));
+    };
+    copyInto(out.uvs, readAttribute("TEXCOORD_0", 2));
+    copyInto(out.uvs1, readAttribute("TEXCOORD_1", 2));
+    copyInto(out.tangents, readAttribute("TANGENT", 4));
+    auto color = primitive.attributes.find("COLOR_0");
+    if (color != primitive.attributes.end() && color->second >= 0 &&
+        color->second < static_cast<int>(model.accessors.size())) {
+        // COLOR_0 is VEC3 or VEC4 (spec §3.7.2.1); VEC3 colors are opaque.
+        const bool rgb = model.accessors[color->second].type == TINYGLTF_TYPE_VEC3;
+        const std::vector<float> values = readAttribute("COLOR_0", rgb ? 3 : 4);
+        out.colors.resize(vertexCount);
+        for (std::size_t v = 0; v < vertexCount; ++v) {
+            out.colors[v] = rgb ? glm::vec4(values[3 * v], values[3 * v + 1], values[3 * v + 2], 1.0f)
+                                : glm::vec4(values[4 * v], values[4 * v + 1], values[4 * v + 2], values[4 * v + 3]);
+        }
     }
 
     std::vector<std::uint32_t> indices;

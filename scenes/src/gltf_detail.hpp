@@ -56,6 +56,9 @@ struct DecodedPrimitive {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;  // empty when the file has none
     std::vector<glm::vec2> uvs;      // empty when the file has none
+    std::vector<glm::vec2> uvs1;     // TEXCOORD_1, empty when the file has none
+    std::vector<glm::vec4> tangents;  // TANGENT, empty when the file has none
+    std::vector<glm::vec4> colors;    // COLOR_0 (alpha 1 for VEC3), empty when the file has none
     std::vector<std::uint32_t> indices;
     int material = -1;
     bool skipped = false;  // no POSITION, or a point/line primitive skipped by option

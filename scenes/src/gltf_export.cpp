@@ -4,15 +4,17 @@
 // Layout (docs/gltf.md): one buffer, one bufferView per accessor, one scene root node per
 // object (level 0, with MSFT_lod naming the coarser level nodes, which are not in the scene)
 // and one per view.
+#include <tiny_gltf.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-
 #include <glm/gtc/quaternion.hpp>
+#include <map>
 #include <nlohmann/json.hpp>
-#include <tiny_gltf.h>
+#include <set>
 
 #include "scenes/atomic_file.hpp"
 #include "scenes/gltf_io.hpp"
@@ -117,6 +119,18 @@ json meshJson(const std::string& name, const std::vector<Mesh>& meshes, BinaryWr
         if (!mesh.uvs.empty()) {
             attributes["TEXCOORD_0"] = writer.addAccessor(mesh.uvs.data(), mesh.uvs.size(), kFloat, "VEC2", 2, kArrayBuffer);
         }
+        if (!mesh.uvs1.empty()) {
+            attributes["TEXCOORD_1"] =
+                writer.addAccessor(mesh.uvs1.data(), mesh.uvs1.size(), kFloat, "VEC2", 2, kArrayBuffer);
+        }
+        if (!mesh.tangents.empty()) {
+            attributes["TANGENT"] =
+                writer.addAccessor(mesh.tangents.data(), mesh.tangents.size(), kFloat, "VEC4", 4, kArrayBuffer);
+        }
+        if (!mesh.colors.empty()) {
+            attributes["COLOR_0"] =
+                writer.addAccessor(mesh.colors.data(), mesh.colors.size(), kFloat, "VEC4", 4, kArrayBuffer);
+        }
         json primitive = {{"attributes", attributes},
                           {"indices", writer.addAccessor(mesh.indices.data(), mesh.indices.size(), kUnsignedInt, "SCALAR",
                                                          1, kElementArrayBuffer)},
@@ -129,6 +143,21 @@ json meshJson(const std::string& name, const std::vector<Mesh>& meshes, BinaryWr
 }
 
 bool isIdentity(const glm::mat4& m) { return m == glm::mat4(1.0f); }
+
+// A glTF sampler (spec §3.8.4) with the GL codes the spec uses.
+json samplerJson(const SamplerState& state) {
+    auto wrap = [](WrapMode mode) {
+        return mode == WrapMode::ClampToEdge ? 33071 : mode == WrapMode::MirroredRepeat ? 33648 : 10497;
+    };
+    const bool linear = state.minFilter == FilterMode::Linear;
+    const int minFilter = state.mipmap == MipmapMode::None      ? (linear ? 9729 : 9728)
+                          : state.mipmap == MipmapMode::Nearest ? (linear ? 9985 : 9984)
+                                                                : (linear ? 9987 : 9986);
+    return {{"magFilter", state.magFilter == FilterMode::Linear ? 9729 : 9728},
+            {"minFilter", minFilter},
+            {"wrapS", wrap(state.wrapS)},
+            {"wrapT", wrap(state.wrapT)}};
+}
 
 // PNG bytes of an RGBA8 texture, through tinygltf's stb_image_write (as a data URI).
 std::string pngDataUri(const Texture& texture) {
@@ -224,13 +253,69 @@ void exportGltf(const Scene& scene, const std::string& path) {
                            {"perspective",
                             {{"yfov", glm::radians(view.fovYDegrees)}, {"znear", view.nearPlane}, {"zfar", view.farPlane}}}});
     }
-    json materials = json::array();
+    // A glTF texture is an image with a sampler: one per distinct pair the materials use.
+    json materials = json::array(), textures = json::array(), samplers = json::array();
+    std::vector<SamplerState> samplerStates;
+    std::map<std::pair<int, int>, int> textureOf;  // (image, sampler) → textures[]
+    std::set<std::string> extensionsUsed;
+    auto textureInfo = [&](const TextureRef& reference) {
+        auto found = std::find(samplerStates.begin(), samplerStates.end(), reference.sampler);
+        const int sampler = int(found - samplerStates.begin());
+        if (found == samplerStates.end()) {
+            samplerStates.push_back(reference.sampler);
+            samplers.push_back(samplerJson(reference.sampler));
+        }
+        auto [entry, added] = textureOf.try_emplace({reference.texture, sampler}, int(textures.size()));
+        if (added) textures.push_back({{"source", reference.texture}, {"sampler", sampler}});
+        json info = {{"index", entry->second}};
+        if (reference.texCoord != 0) info["texCoord"] = reference.texCoord;
+        if (!reference.transform.isIdentity()) {
+            const TextureTransform& transform = reference.transform;
+            info["extensions"] = {{"KHR_texture_transform",
+                                   {{"offset", vec(&transform.offset.x, 2)},
+                                    {"rotation", transform.rotation},
+                                    {"scale", vec(&transform.scale.x, 2)}}}};
+            extensionsUsed.insert("KHR_texture_transform");
+        }
+        return info;
+    };
     for (const Material& material : scene.materials) {
-        json pbr = {{"baseColorFactor", vec(&material.baseColorFactor.x, 4)}, {"metallicFactor", 0.0}};
-        if (material.baseColorTexture >= 0) pbr["baseColorTexture"] = {{"index", material.baseColorTexture}};
-        materials.push_back({{"name", material.name}, {"pbrMetallicRoughness", pbr}});
+        json pbr = {{"baseColorFactor", vec(&material.baseColorFactor.x, 4)},
+                    {"metallicFactor", material.metallicFactor},
+                    {"roughnessFactor", material.roughnessFactor}};
+        if (material.baseColorTexture.present()) pbr["baseColorTexture"] = textureInfo(material.baseColorTexture);
+        if (material.metallicRoughnessTexture.present()) {
+            pbr["metallicRoughnessTexture"] = textureInfo(material.metallicRoughnessTexture);
+        }
+        json out = {{"name", material.name}, {"pbrMetallicRoughness", pbr}};
+        if (material.normalTexture.present()) {
+            out["normalTexture"] = textureInfo(material.normalTexture);
+            out["normalTexture"]["scale"] = material.normalScale;
+        }
+        if (material.occlusionTexture.present()) {
+            out["occlusionTexture"] = textureInfo(material.occlusionTexture);
+            out["occlusionTexture"]["strength"] = material.occlusionStrength;
+        }
+        if (material.emissiveTexture.present()) out["emissiveTexture"] = textureInfo(material.emissiveTexture);
+        if (material.emissiveFactor != glm::vec3(0.0f)) out["emissiveFactor"] = vec3(material.emissiveFactor);
+        if (material.emissiveStrength != 1.0f) {
+            out["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", material.emissiveStrength}};
+            extensionsUsed.insert("KHR_materials_emissive_strength");
+        }
+        if (material.unlit) {
+            out["extensions"]["KHR_materials_unlit"] = json::object();
+            extensionsUsed.insert("KHR_materials_unlit");
+        }
+        if (material.alphaMode == AlphaMode::Mask) {
+            out["alphaMode"] = "MASK";
+            out["alphaCutoff"] = material.alphaCutoff;
+        } else if (material.alphaMode == AlphaMode::Blend) {
+            out["alphaMode"] = "BLEND";
+        }
+        if (material.doubleSided) out["doubleSided"] = true;
+        materials.push_back(std::move(out));
     }
-    json images = json::array(), textures = json::array();
+    json images = json::array();
     for (std::size_t t = 0; t < scene.textures.size(); ++t) {
         const std::string uri = pngDataUri(scene.textures[t]);
         json image = {{"name", scene.textures[t].name}};
@@ -242,7 +327,6 @@ void exportGltf(const Scene& scene, const std::string& path) {
             image["uri"] = uri;
         }
         images.push_back(std::move(image));
-        textures.push_back({{"source", t}});
     }
 
     json sceneJson = {{"nodes", roots}};
@@ -253,9 +337,11 @@ void exportGltf(const Scene& scene, const std::string& path) {
     if (!meshes.empty()) document["meshes"] = meshes;
     if (!materials.empty()) document["materials"] = materials;
     if (!textures.empty()) document["textures"] = textures;
+    if (!samplers.empty()) document["samplers"] = samplers;
     if (!images.empty()) document["images"] = images;
     if (!cameras.empty()) document["cameras"] = cameras;
-    if (anyLods) document["extensionsUsed"] = json::array({"MSFT_lod"});
+    if (anyLods) extensionsUsed.insert("MSFT_lod");
+    if (!extensionsUsed.empty()) document["extensionsUsed"] = extensionsUsed;
     std::vector<unsigned char>& bin = writer.bytes();
     while (bin.size() % 4 != 0) bin.push_back(0);
     if (!bin.empty()) {

@@ -1,6 +1,7 @@
 // Materials, textures, views and camera paths of the glTF loader (the SceneBuilder parts
-// that are not geometry). Base color only: glTF 2.0 spec §3.9.2 baseColorFactor ×
-// baseColorTexture, or KHR_materials_pbrSpecularGlossiness's diffuse when present.
+// that are not geometry). Materials are glTF 2.0 metallic-roughness (spec §3.9) with their
+// samplers, KHR_texture_transform, KHR_materials_emissive_strength and KHR_materials_unlit;
+// KHR_materials_pbrSpecularGlossiness becomes a dielectric with its diffuse as base color.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -42,6 +43,50 @@ glm::vec4 baseColorFactorOf(const tinygltf::Material& material) {
         color[i] = std::isfinite(factor[i]) ? static_cast<float>(factor[i]) : 1.0f;
     }
     return color;
+}
+
+float finiteOr(double value, float fallback) {
+    return std::isfinite(value) ? static_cast<float>(value) : fallback;
+}
+
+WrapMode wrapMode(int code) {
+    if (code == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return WrapMode::ClampToEdge;
+    if (code == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return WrapMode::MirroredRepeat;
+    return WrapMode::Repeat;
+}
+
+// glTF samplers (spec §3.8.4); an undefined filter leaves the choice to the renderer, and
+// lodopt then filters linearly with trilinear mipmaps as engines commonly do.
+SamplerState samplerState(const tinygltf::Sampler& sampler) {
+    SamplerState state;
+    state.wrapS = wrapMode(sampler.wrapS);
+    state.wrapT = wrapMode(sampler.wrapT);
+    if (sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) state.magFilter = FilterMode::Nearest;
+    switch (sampler.minFilter) {
+        case TINYGLTF_TEXTURE_FILTER_NEAREST:
+            state.minFilter = FilterMode::Nearest;
+            state.mipmap = MipmapMode::None;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR:
+            state.minFilter = FilterMode::Linear;
+            state.mipmap = MipmapMode::None;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+            state.minFilter = FilterMode::Nearest;
+            state.mipmap = MipmapMode::Nearest;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+            state.minFilter = FilterMode::Linear;
+            state.mipmap = MipmapMode::Nearest;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+            state.minFilter = FilterMode::Nearest;
+            state.mipmap = MipmapMode::Linear;
+            break;
+        default:
+            break;  // LINEAR_MIPMAP_LINEAR or undefined
+    }
+    return state;
 }
 
 // Width and height from a PNG's IHDR, to refuse a decompression bomb before decoding.
@@ -180,14 +225,20 @@ int SceneBuilder::sceneTexture(int gltfTexture, const std::string& where) {
 }
 
 void SceneBuilder::buildMaterials() {
-    // Decode only base-color images, in image order, so that an exported scene (texture i is
+    // Decode the images materials use, in image order, so that an exported scene (texture i is
     // image i) loads back with the same texture indices.
     std::set<int> images;
-    for (int m = 0; m < static_cast<int>(mModel.materials.size()); ++m) {
-        const int texture = baseColorTextureOf(mModel.materials[m]);
+    auto addImageOf = [&](int texture) {
         if (texture >= 0 && texture < static_cast<int>(mModel.textures.size()) && mModel.textures[texture].source >= 0) {
             images.insert(mModel.textures[texture].source);
         }
+    };
+    for (const tinygltf::Material& material : mModel.materials) {
+        addImageOf(baseColorTextureOf(material));
+        addImageOf(material.pbrMetallicRoughness.metallicRoughnessTexture.index);
+        addImageOf(material.normalTexture.index);
+        addImageOf(material.occlusionTexture.index);
+        addImageOf(material.emissiveTexture.index);
     }
     mImageToTexture.assign(mModel.images.size(), -1);
     for (int image : images) {
@@ -195,18 +246,92 @@ void SceneBuilder::buildMaterials() {
         mScene.textures.push_back(decodeImage(image));
     }
     for (int m = 0; m < static_cast<int>(mModel.materials.size()); ++m) {
-        const tinygltf::Material& source = mModel.materials[m];
-        Material material;
-        material.name = source.name.empty() ? "material" + std::to_string(m) : source.name;
-        material.baseColorFactor = baseColorFactorOf(source);
-        material.baseColorTexture =
-            sceneTexture(baseColorTextureOf(source), element("materials", m) + ".pbrMetallicRoughness.baseColorTexture");
-        if (source.pbrMetallicRoughness.baseColorTexture.texCoord > 0) {
-            warn(element("materials", m) + ": base color uses TEXCOORD_" +
-                 std::to_string(source.pbrMetallicRoughness.baseColorTexture.texCoord) + "; lodopt reads TEXCOORD_0");
-        }
-        mScene.materials.push_back(std::move(material));
+        mScene.materials.push_back(buildMaterial(m));
     }
+}
+
+Material SceneBuilder::buildMaterial(int index) {
+    const tinygltf::Material& source = mModel.materials[index];
+    const std::string where = element("materials", index);
+    Material material;
+    material.name = source.name.empty() ? "material" + std::to_string(index) : source.name;
+    const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+    material.baseColorFactor = baseColorFactorOf(source);
+    material.baseColorTexture =
+        textureRef(baseColorTextureOf(source), pbr.baseColorTexture.texCoord, pbr.baseColorTexture.extensions,
+                   where + ".pbrMetallicRoughness.baseColorTexture");
+    material.metallicFactor = finiteOr(pbr.metallicFactor, 1.0f);
+    material.roughnessFactor = finiteOr(pbr.roughnessFactor, 1.0f);
+    material.metallicRoughnessTexture =
+        textureRef(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                   pbr.metallicRoughnessTexture.extensions, where + ".pbrMetallicRoughness.metallicRoughnessTexture");
+    if (auto specGloss = source.extensions.find(kSpecGloss); specGloss != source.extensions.end()) {
+        // Specular-glossiness drawn as a dielectric with the diffuse color as base color.
+        const tinygltf::Value& glossiness = specGloss->second.Get("glossinessFactor");
+        material.metallicFactor = 0.0f;
+        material.roughnessFactor = glossiness.IsNumber() ? 1.0f - float(glossiness.GetNumberAsDouble()) : 0.0f;
+        material.metallicRoughnessTexture = {};
+    }
+    material.normalTexture = textureRef(source.normalTexture.index, source.normalTexture.texCoord,
+                                        source.normalTexture.extensions, where + ".normalTexture");
+    material.normalScale = finiteOr(source.normalTexture.scale, 1.0f);
+    material.occlusionTexture = textureRef(source.occlusionTexture.index, source.occlusionTexture.texCoord,
+                                           source.occlusionTexture.extensions, where + ".occlusionTexture");
+    material.occlusionStrength = std::clamp(finiteOr(source.occlusionTexture.strength, 1.0f), 0.0f, 1.0f);
+    material.emissiveTexture = textureRef(source.emissiveTexture.index, source.emissiveTexture.texCoord,
+                                          source.emissiveTexture.extensions, where + ".emissiveTexture");
+    for (int c = 0; c < 3 && c < static_cast<int>(source.emissiveFactor.size()); ++c) {
+        material.emissiveFactor[c] = std::max(finiteOr(source.emissiveFactor[c], 0.0f), 0.0f);
+    }
+    if (auto strength = source.extensions.find("KHR_materials_emissive_strength");
+        strength != source.extensions.end()) {
+        const tinygltf::Value& value = strength->second.Get("emissiveStrength");
+        if (value.IsNumber()) material.emissiveStrength = std::max(finiteOr(value.GetNumberAsDouble(), 1.0f), 0.0f);
+    }
+    if (source.alphaMode == "MASK") {
+        material.alphaMode = AlphaMode::Mask;
+    } else if (source.alphaMode == "BLEND") {
+        material.alphaMode = AlphaMode::Blend;
+    } else if (!source.alphaMode.empty() && source.alphaMode != "OPAQUE") {
+        fail(mFile, where + ".alphaMode", "'" + source.alphaMode + "' is not OPAQUE, MASK or BLEND");
+    }
+    material.alphaCutoff = std::max(finiteOr(source.alphaCutoff, 0.5f), 0.0f);
+    material.doubleSided = source.doubleSided;
+    material.unlit = source.extensions.count("KHR_materials_unlit") > 0;
+    return material;
+}
+
+TextureRef SceneBuilder::textureRef(int gltfTexture, int texCoord, const tinygltf::ExtensionMap& extensions,
+                                    const std::string& where) {
+    TextureRef reference;
+    reference.texture = sceneTexture(gltfTexture, where);
+    if (!reference.present()) return {};
+    reference.texCoord = texCoord;
+    if (auto transform = extensions.find("KHR_texture_transform"); transform != extensions.end()) {
+        const tinygltf::Value& value = transform->second;
+        auto pair = [&](const char* key, glm::vec2 fallback) {
+            const tinygltf::Value& entry = value.Get(key);
+            if (!entry.IsArray() || entry.ArrayLen() != 2) return fallback;
+            return glm::vec2(finiteOr(entry.Get(0).GetNumberAsDouble(), fallback.x),
+                             finiteOr(entry.Get(1).GetNumberAsDouble(), fallback.y));
+        };
+        reference.transform.offset = pair("offset", glm::vec2(0.0f));
+        reference.transform.scale = pair("scale", glm::vec2(1.0f));
+        if (value.Get("rotation").IsNumber()) {
+            reference.transform.rotation = finiteOr(value.Get("rotation").GetNumberAsDouble(), 0.0f);
+        }
+        if (value.Get("texCoord").IsNumber()) reference.texCoord = value.Get("texCoord").GetNumberAsInt();
+    }
+    if (reference.texCoord < 0 || reference.texCoord > 1) {
+        warn(where + ": uses TEXCOORD_" + std::to_string(reference.texCoord) +
+             "; lodopt reads TEXCOORD_0 and _1, so TEXCOORD_0");
+        reference.texCoord = 0;
+    }
+    const int sampler = mModel.textures[gltfTexture].sampler;
+    if (sampler >= 0 && sampler < static_cast<int>(mModel.samplers.size())) {
+        reference.sampler = samplerState(mModel.samplers[sampler]);
+    }
+    return reference;
 }
 
 void SceneBuilder::buildViews() {

@@ -104,11 +104,29 @@ Scene SceneBuilder::build() {
         }
     }
     visitGroupLevel(roots, glm::mat4(1.0f));
+    generateMissingTangents();
     updateStatistics(mScene);
     buildViews();
     if (sceneIndex >= 0) buildPaths(sceneIndex);
     validateScene(mScene);
     return std::move(mScene);
+}
+
+// Normal maps need a tangent frame; a primitive without TANGENT gets one from its UVs (spec
+// §3.7.2.1: "client implementations SHOULD calculate tangents using default MikkTSpace
+// algorithms"). Without the UV set the normal map cannot be read, and the renderer skips it.
+void SceneBuilder::generateMissingTangents() {
+    for (Object& object : mScene.objects) {
+        for (Level& level : object.levels) {
+            for (Mesh& mesh : level.meshes) {
+                if (mesh.material < 0 || !mesh.tangents.empty()) continue;
+                const TextureRef& normalMap = mScene.materials[std::size_t(mesh.material)].normalTexture;
+                const std::vector<glm::vec2>& uvs = normalMap.texCoord == 1 ? mesh.uvs1 : mesh.uvs;
+                if (normalMap.present() && uvs.size() == mesh.positions.size())
+                    computeTangents(mesh, normalMap.texCoord);
+            }
+        }
+    }
 }
 
 SceneBuilder::Classified SceneBuilder::classify(const std::vector<int>& siblings) const {
@@ -199,7 +217,19 @@ void SceneBuilder::appendMesh(int meshIndex, const glm::mat4& relative, Level& l
             mesh.positions[v] = glm::vec3(relative * glm::vec4(decoded->positions[v], 1.0f));
         }
         mesh.uvs = decoded->uvs;
+        mesh.uvs1 = decoded->uvs1;
+        mesh.colors = decoded->colors;
         mesh.indices = decoded->indices;
+        // Tangents follow the surface (the linear part); a mirroring transform flips the
+        // bitangent's side, which cross(normal', tangent') does not see.
+        mesh.tangents.resize(decoded->tangents.size());
+        for (std::size_t v = 0; v < decoded->tangents.size(); ++v) {
+            const glm::vec4& t = decoded->tangents[v];
+            const glm::vec3 direction = linear * glm::vec3(t);
+            const float length = glm::length(direction);
+            const float sign = (t.w < 0.0f) != mirrored ? -1.0f : 1.0f;
+            mesh.tangents[v] = glm::vec4(length > 1e-20f ? direction / length : glm::vec3(1.0f, 0.0f, 0.0f), sign);
+        }
         // A mirroring transform turns counter-clockwise front faces clockwise (spec §3.7.4).
         if (mirrored) {
             for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);

@@ -52,8 +52,12 @@ private:
     void appendMesh(int mesh, const glm::mat4& relative, Level& level);
     void applyMaterialLods(Object& object, int rootNode);
     void finishObject(Object object);
+    void generateMissingTangents();
 
     void buildMaterials();
+    Material buildMaterial(int index);
+    TextureRef textureRef(int gltfTexture, int texCoord, const tinygltf::ExtensionMap& extensions,
+                          const std::string& where);
     int sceneTexture(int gltfTexture, const std::string& where);
     Texture decodeImage(int image);
     void buildViews();

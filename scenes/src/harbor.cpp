@@ -16,7 +16,7 @@ namespace lodopt::scenes {
 namespace {
 
 int addMaterial(Scene& scene, const char* name, glm::vec3 color, int texture = -1) {
-    scene.materials.push_back(Material{name, glm::vec4(color, 1.0f), texture});
+    scene.materials.push_back(diffuseMaterial(name, color, texture));
     return static_cast<int>(scene.materials.size()) - 1;
 }
 

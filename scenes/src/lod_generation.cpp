@@ -17,10 +17,14 @@ namespace {
 
 // Vertex layout for welding: exact duplicates (same position, normal and uv) become one
 // vertex, so that triangle soups have connectivity for the simplifier.
+// Every attribute of a vertex: duplicates are welded only when all of them agree.
 struct WeldVertex {
     glm::vec3 position;
     glm::vec3 normal;
     glm::vec2 uv;
+    glm::vec2 uv1;
+    glm::vec4 tangent;
+    glm::vec4 color;
 };
 
 // Largest extent of the meshes' bounding box (what meshopt_simplifyScale measures, so that
@@ -44,6 +48,9 @@ float simplifyMesh(const Mesh& source, float ratio, Mesh& out) {
     assert(ratio > 0.0f && ratio <= 1.0f);
     assert(source.normals.size() == source.positions.size());
     assert(source.uvs.empty() || source.uvs.size() == source.positions.size());
+    assert(source.uvs1.empty() || source.uvs1.size() == source.positions.size());
+    assert(source.tangents.empty() || source.tangents.size() == source.positions.size());
+    assert(source.colors.empty() || source.colors.size() == source.positions.size());
     out = Mesh();
     out.material = source.material;
     const std::size_t triangles = source.indices.size() / 3;
@@ -58,7 +65,12 @@ float simplifyMesh(const Mesh& source, float ratio, Mesh& out) {
     const std::size_t vertexCount = source.positions.size();
     std::vector<WeldVertex> vertices(vertexCount);
     for (std::size_t v = 0; v < vertexCount; ++v) {
-        vertices[v] = {source.positions[v], source.normals[v], source.uvs.empty() ? glm::vec2(0.0f) : source.uvs[v]};
+        vertices[v] = {source.positions[v],
+                       source.normals[v],
+                       source.uvs.empty() ? glm::vec2(0.0f) : source.uvs[v],
+                       source.uvs1.empty() ? glm::vec2(0.0f) : source.uvs1[v],
+                       source.tangents.empty() ? glm::vec4(0.0f) : source.tangents[v],
+                       source.colors.empty() ? glm::vec4(0.0f) : source.colors[v]};
     }
     std::vector<unsigned int> remap(vertexCount);
     const std::size_t welded = meshopt_generateVertexRemap(remap.data(), source.indices.data(), source.indices.size(),
@@ -97,10 +109,16 @@ float simplifyMesh(const Mesh& source, float ratio, Mesh& out) {
     out.positions.resize(used);
     out.normals.resize(used);
     if (!source.uvs.empty()) out.uvs.resize(used);
+    if (!source.uvs1.empty()) out.uvs1.resize(used);
+    if (!source.tangents.empty()) out.tangents.resize(used);
+    if (!source.colors.empty()) out.colors.resize(used);
     for (std::size_t v = 0; v < used; ++v) {
         out.positions[v] = kept[v].position;
         out.normals[v] = kept[v].normal;
         if (!source.uvs.empty()) out.uvs[v] = kept[v].uv;
+        if (!source.uvs1.empty()) out.uvs1[v] = kept[v].uv1;
+        if (!source.tangents.empty()) out.tangents[v] = kept[v].tangent;
+        if (!source.colors.empty()) out.colors[v] = kept[v].color;
     }
     out.indices.assign(simplified.begin(), simplified.end());
     return error;

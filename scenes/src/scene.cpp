@@ -66,8 +66,12 @@ LevelStats computeLevelStats(const Scene& scene, const Level& level) {
         stats.triangles += mesh.indices.size() / 3;
         if (!mesh.indices.empty()) ++stats.drawCalls;
         if (mesh.material >= 0 && mesh.material < static_cast<int>(scene.materials.size())) {
-            int texture = scene.materials[mesh.material].baseColorTexture;
-            if (texture >= 0) textures.insert(texture);
+            const Material& material = scene.materials[mesh.material];
+            for (const TextureRef* reference :
+                 {&material.baseColorTexture, &material.metallicRoughnessTexture, &material.normalTexture,
+                  &material.occlusionTexture, &material.emissiveTexture}) {
+                if (reference->present()) textures.insert(reference->texture);
+            }
         }
     }
     for (int texture : textures) {
@@ -122,6 +126,81 @@ void computeNormals(Mesh& mesh) {
     }
 }
 
+void computeTangents(Mesh& mesh, int texCoord) {
+    const std::vector<glm::vec2>& uvs = texCoord == 1 ? mesh.uvs1 : mesh.uvs;
+    const std::size_t count = mesh.positions.size();
+    std::vector<glm::vec3> tangentSum(count, glm::vec3(0.0f)), bitangentSum(count, glm::vec3(0.0f));
+    if (uvs.size() == count && mesh.normals.size() == count) {
+        for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+            const std::uint32_t corner[3] = {mesh.indices[i], mesh.indices[i + 1], mesh.indices[i + 2]};
+            if (corner[0] >= count || corner[1] >= count || corner[2] >= count) continue;
+            const glm::vec3 edge1 = mesh.positions[corner[1]] - mesh.positions[corner[0]];
+            const glm::vec3 edge2 = mesh.positions[corner[2]] - mesh.positions[corner[0]];
+            const glm::vec2 duv1 = uvs[corner[1]] - uvs[corner[0]], duv2 = uvs[corner[2]] - uvs[corner[0]];
+            const float determinant = duv1.x * duv2.y - duv2.x * duv1.y;
+            if (!(std::abs(determinant) > 1e-20f)) continue;  // degenerate UVs: no direction
+            // Per triangle, unit vectors: MikkTSpace weighs corners by angle, not by area.
+            glm::vec3 tangent = (edge1 * duv2.y - edge2 * duv1.y) / determinant;
+            glm::vec3 bitangent = (edge2 * duv1.x - edge1 * duv2.x) / determinant;
+            const float tangentLength = glm::length(tangent), bitangentLength = glm::length(bitangent);
+            if (!(tangentLength > 1e-20f) || !(bitangentLength > 1e-20f) || !std::isfinite(tangentLength) ||
+                !std::isfinite(bitangentLength)) {
+                continue;
+            }
+            tangent /= tangentLength;
+            bitangent /= bitangentLength;
+            for (int k = 0; k < 3; ++k) {
+                const glm::vec3 toNext = mesh.positions[corner[(k + 1) % 3]] - mesh.positions[corner[k]];
+                const glm::vec3 toPrevious = mesh.positions[corner[(k + 2) % 3]] - mesh.positions[corner[k]];
+                const float lengths = glm::length(toNext) * glm::length(toPrevious);
+                if (!(lengths > 0.0f)) continue;
+                const float angle = std::acos(std::clamp(glm::dot(toNext, toPrevious) / lengths, -1.0f, 1.0f));
+                tangentSum[corner[k]] += angle * tangent;
+                bitangentSum[corner[k]] += angle * bitangent;
+            }
+        }
+    }
+    mesh.tangents.resize(count);
+    for (std::size_t v = 0; v < count; ++v) {
+        const glm::vec3 normal = v < mesh.normals.size() ? mesh.normals[v] : glm::vec3(0.0f, 1.0f, 0.0f);
+        glm::vec3 tangent = tangentSum[v] - normal * glm::dot(normal, tangentSum[v]);
+        float length = glm::length(tangent);
+        if (!(length > 1e-12f) || !std::isfinite(length)) {
+            // Any direction orthogonal to the normal: the axis least aligned with it, projected.
+            const glm::vec3 axis =
+                std::abs(normal.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+            tangent = axis - normal * glm::dot(normal, axis);
+            length = glm::length(tangent);
+        }
+        tangent /= length;
+        // glTF's v runs down the image while a normal map's green points up it (spec §3.9.3), so
+        // the bitangent is -dP/dv, as MikkTSpace gives it for glTF's flipped UVs.
+        const float handedness = glm::dot(glm::cross(normal, tangent), bitangentSum[v]) > 0.0f ? -1.0f : 1.0f;
+        mesh.tangents[v] = glm::vec4(tangent, handedness);
+    }
+}
+
+glm::mat3 TextureTransform::matrix() const {
+    // KHR_texture_transform: translation * rotation * scale, the rotation matrix as the
+    // extension writes it (rows (cos, sin), (-sin, cos)); glm is column-major.
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    const glm::mat3 translationMatrix(1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f, offset.x, offset.y, 1.0f);
+    const glm::mat3 rotationMatrix(c, -s, 0.0f, s, c, 0.0f, 0.0f, 0.0f, 1.0f);
+    const glm::mat3 scaleMatrix(scale.x, 0.0f, 0.0f, 0.0f, scale.y, 0.0f, 0.0f, 0.0f, 1.0f);
+    return translationMatrix * rotationMatrix * scaleMatrix;
+}
+
+Material diffuseMaterial(std::string name, glm::vec3 color, int baseColorTexture) {
+    Material material;
+    material.name = std::move(name);
+    material.baseColorFactor = glm::vec4(color, 1.0f);
+    material.baseColorTexture.texture = baseColorTexture;
+    material.metallicFactor = 0.0f;
+    material.roughnessFactor = 0.8f;
+    material.doubleSided = true;
+    return material;
+}
+
 void validateScene(const Scene& scene) {
     const std::string prefix = scene.name.empty() ? std::string("scene") : scene.name;
     for (std::size_t t = 0; t < scene.textures.size(); ++t) {
@@ -133,10 +212,21 @@ void validateScene(const Scene& scene) {
         }
     }
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
-        int texture = scene.materials[m].baseColorTexture;
-        if (texture >= static_cast<int>(scene.textures.size()) || texture < -1) {
-            throw SceneError(prefix + ": materials[" + std::to_string(m) + "].baseColorTexture: " +
-                             std::to_string(texture) + " does not exist");
+        const Material& material = scene.materials[m];
+        const std::pair<const char*, const TextureRef*> references[] = {
+            {"baseColorTexture", &material.baseColorTexture},
+            {"metallicRoughnessTexture", &material.metallicRoughnessTexture},
+            {"normalTexture", &material.normalTexture},
+            {"occlusionTexture", &material.occlusionTexture},
+            {"emissiveTexture", &material.emissiveTexture}};
+        for (const auto& [name, reference] : references) {
+            const std::string where = prefix + ": materials[" + std::to_string(m) + "]." + name;
+            if (reference->texture >= static_cast<int>(scene.textures.size()) || reference->texture < -1) {
+                throw SceneError(where + ": " + std::to_string(reference->texture) + " does not exist");
+            }
+            if (reference->texCoord < 0 || reference->texCoord > 1) {
+                throw SceneError(where + ": TEXCOORD_" + std::to_string(reference->texCoord) + " is not 0 or 1");
+            }
         }
     }
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
@@ -151,6 +241,15 @@ void validateScene(const Scene& scene) {
                 if (mesh.normals.size() != mesh.positions.size()) throw SceneError(at + ": normals do not match positions");
                 if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) {
                     throw SceneError(at + ": uvs do not match positions");
+                }
+                if (!mesh.uvs1.empty() && mesh.uvs1.size() != mesh.positions.size()) {
+                    throw SceneError(at + ": uvs1 do not match positions");
+                }
+                if (!mesh.tangents.empty() && mesh.tangents.size() != mesh.positions.size()) {
+                    throw SceneError(at + ": tangents do not match positions");
+                }
+                if (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()) {
+                    throw SceneError(at + ": colors do not match positions");
                 }
                 if (mesh.material < -1 || mesh.material >= static_cast<int>(scene.materials.size())) {
                     throw SceneError(at + ": material " + std::to_string(mesh.material) + " does not exist");

@@ -287,7 +287,7 @@ lodopt::scenes::Mesh boxMesh(float half, int material) {
 lodopt::scenes::Scene boxScene(glm::vec3 position, int levels) {
     lodopt::scenes::Scene scene;
     scene.name = "edge";
-    scene.materials.push_back({"red", {0.8f, 0.2f, 0.2f, 1.0f}, -1});
+    scene.materials.push_back(lodopt::scenes::diffuseMaterial("red", {0.8f, 0.2f, 0.2f}));
     lodopt::scenes::Object object;
     object.name = "box";
     object.transform = glm::translate(glm::mat4(1.0f), position);

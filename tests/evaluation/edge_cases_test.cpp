@@ -43,8 +43,8 @@ scenes::Object objectAt(const std::string& name, glm::vec3 position, std::vector
 scenes::Scene emptyScene() {
     scenes::Scene scene;
     scene.name = "edges";
-    scene.materials.push_back({"red", {0.8f, 0.2f, 0.2f, 1.0f}, -1});
-    scene.materials.push_back({"grey", {0.5f, 0.5f, 0.5f, 1.0f}, -1});
+    scene.materials.push_back(scenes::diffuseMaterial("red", {0.8f, 0.2f, 0.2f}));
+    scene.materials.push_back(scenes::diffuseMaterial("grey", {0.5f, 0.5f, 0.5f}));
     scenes::Camera camera;
     camera.name = "front";
     camera.position = {0, 0, 10};

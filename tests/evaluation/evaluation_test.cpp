@@ -26,8 +26,8 @@ namespace {
 scenes::Scene skipScene() {
     scenes::Scene scene;
     scene.name = "skips";
-    scene.materials.push_back({"red", {0.8f, 0.2f, 0.2f, 1.0f}, -1});
-    scene.materials.push_back({"grey", {0.5f, 0.5f, 0.5f, 1.0f}, -1});
+    scene.materials.push_back(scenes::diffuseMaterial("red", {0.8f, 0.2f, 0.2f}));
+    scene.materials.push_back(scenes::diffuseMaterial("grey", {0.5f, 0.5f, 0.5f}));
     scene.objects.push_back(boxObject("visible", {0, 0, 0}, {{1, 1, 1}, {1, 1, 1}, {0.5f, 0.5f, 0.5f}}, 0));
     scene.objects.push_back(boxObject("behind", {0, 0, 30}, {{1, 1, 1}, {0.5f, 0.5f, 0.5f}}, 0));
     scene.objects.push_back(boxObject("speck", {0, 0, -490}, {{0.001f, 0.001f, 0.001f}, {0.0005f, 0.0005f, 0.0005f}}, 0));

@@ -23,8 +23,8 @@ namespace {
 scenes::Scene panelScene() {
     scenes::Scene scene;
     scene.name = "panels";
-    scene.materials.push_back({"red", {0.8f, 0.2f, 0.2f, 1.0f}, -1});
-    scene.materials.push_back({"grey", {0.5f, 0.5f, 0.5f, 1.0f}, -1});
+    scene.materials.push_back(scenes::diffuseMaterial("red", {0.8f, 0.2f, 0.2f}));
+    scene.materials.push_back(scenes::diffuseMaterial("grey", {0.5f, 0.5f, 0.5f}));
     scene.objects.push_back(boxObject("front", {0, 0, 0}, {{2.0f, 2.0f, 0.2f}, {1.9f, 1.9f, 0.2f}}, 0));
     scene.objects.push_back(boxObject("back", {0, 0, -3}, {{3.2f, 1.0f, 0.2f}, {3.0f, 0.9f, 0.2f}}, 1));
     scenes::Camera camera;

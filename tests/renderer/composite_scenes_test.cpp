@@ -76,7 +76,7 @@ TEST(CompositeScenes, SceneAssembledFromThirdPartyModels) {
         scenes::Scene part = scenes::loadGltf((data / file).string());
         const int materialBase = int(scene.materials.size()), textureBase = int(scene.textures.size());
         for (scenes::Material material : part.materials) {
-            if (material.baseColorTexture >= 0) material.baseColorTexture += textureBase;
+            if (material.baseColorTexture.present()) material.baseColorTexture.texture += textureBase;
             scene.materials.push_back(material);
         }
         for (scenes::Texture& texture : part.textures) scene.textures.push_back(std::move(texture));

@@ -76,7 +76,7 @@ void expectSameScene(const Scene& a, const Scene& b) {
     for (std::size_t m = 0; m < a.materials.size(); ++m) {
         EXPECT_EQ(a.materials[m].name, b.materials[m].name);
         EXPECT_EQ(a.materials[m].baseColorFactor, b.materials[m].baseColorFactor);
-        EXPECT_EQ(a.materials[m].baseColorTexture, b.materials[m].baseColorTexture);
+        EXPECT_EQ(a.materials[m].baseColorTexture.texture, b.materials[m].baseColorTexture.texture);
     }
     ASSERT_EQ(a.textures.size(), b.textures.size());
     for (std::size_t t = 0; t < a.textures.size(); ++t) {
@@ -116,11 +116,11 @@ Texture checker(const std::string& name, int size, std::uint8_t shade) {
 Scene handBuiltScene(bool withTextures) {
     Scene scene;
     scene.name = "handmade";
-    scene.materials = {{"stone", {0.5f, 0.4f, 0.3f, 1.0f}, -1}, {"leaf", {1.0f, 1.0f, 1.0f, 1.0f}, -1}};
+    scene.materials = {diffuseMaterial("stone", {0.5f, 0.4f, 0.3f}), diffuseMaterial("leaf", {1.0f, 1.0f, 1.0f})};
     if (withTextures) {
         scene.textures = {checker("bark", 4, 10), checker("leafy", 8, 60)};
-        scene.materials[0].baseColorTexture = 1;
-        scene.materials[1].baseColorTexture = 0;
+        scene.materials[0].baseColorTexture.texture = 1;
+        scene.materials[1].baseColorTexture.texture = 0;
     }
     Object box;
     box.name = "box";

@@ -50,8 +50,8 @@ scenes::Scene threeObjectScene() {
     texture.width = texture.height = 4;
     texture.rgba.assign(4 * 4 * 4, 200);
     scene.textures.push_back(texture);
-    scene.materials.push_back(scenes::Material{"plain", glm::vec4(1.0f), -1});
-    scene.materials.push_back(scenes::Material{"textured", glm::vec4(1.0f), 0});
+    scene.materials.push_back(scenes::diffuseMaterial("plain", glm::vec3(1.0f)));
+    scene.materials.push_back(scenes::diffuseMaterial("textured", glm::vec3(1.0f), 0));
     const float depths[3] = {-5.0f, -10.0f, 5.0f};
     for (int o = 0; o < 3; ++o) {
         scenes::Object object;
@@ -374,8 +374,8 @@ scenes::Scene halfTexturedBehindAQuad(bool farFirst) {
     texture.width = texture.height = 2;
     texture.rgba.assign(2 * 2 * 4, 128);
     scene.textures.push_back(texture);
-    scene.materials.push_back(scenes::Material{"plain", glm::vec4(1.0f), -1});
-    scene.materials.push_back(scenes::Material{"textured", glm::vec4(1.0f), 0});
+    scene.materials.push_back(scenes::diffuseMaterial("plain", glm::vec3(1.0f)));
+    scene.materials.push_back(scenes::diffuseMaterial("textured", glm::vec3(1.0f), 0));
     scenes::Object far = oneLevelObject("far", {quadMesh(-10, 0, -4, 1), quadMesh(0, 10, -4, 0)});
     scenes::Object near = oneLevelObject("near", {quadMesh(-10, 10, -2, 0)});
     if (farFirst) {

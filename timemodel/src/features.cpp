@@ -157,7 +157,7 @@ double viewportPixels(const ProjectedOutline& outline, int width, int height) {
 namespace {
 
 bool textured(const std::vector<scenes::Material>& materials, int material) {
-    return material >= 0 && std::size_t(material) < materials.size() && materials[material].baseColorTexture >= 0;
+    return material >= 0 && std::size_t(material) < materials.size() && materials[material].baseColorTexture.present();
 }
 
 // The work a FeatureTable may skip, from the features it needs.

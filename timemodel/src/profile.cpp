@@ -166,7 +166,7 @@ std::string profileToJson(const DeviceProfile& profile) {
           {"cores", profile.machine.cores},
           {"lp_num_threads", profile.machine.llvmpipeThreads}}},
         {"renderer", {{"gl_renderer", profile.glRenderer}, {"gl_version", profile.glVersion}}},
-        {"render_size", {{"width", profile.width}, {"height", profile.height}}},
+        {"render_size", {{"width", profile.width}, {"height", profile.height}, {"shading", profile.shading}}},
         {"scene", {{"name", profile.scene}, {"seed", profile.sceneSeed}}},
         {"calibration",
          {{"seed", profile.seed},
@@ -232,6 +232,7 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
     profile.width = static_cast<int>(read.integer(size, "width", "render_size"));
     profile.height = static_cast<int>(read.integer(size, "height", "render_size"));
     if (profile.width < 1 || profile.height < 1) read.fail("render_size", "width and height must be >= 1");
+    if (size.contains("shading")) profile.shading = read.text(size, "shading", "render_size");
     const Json& scene = read.field(document, "scene", "document");
     profile.scene = read.text(scene, "name", "scene");
     profile.sceneSeed = static_cast<std::uint32_t>(read.integer(scene, "seed", "scene"));
@@ -397,8 +398,12 @@ std::unique_ptr<TimeModel> modelFromProfile(const DeviceProfile& profile, const 
 }
 
 std::vector<std::string> profileWarnings(const DeviceProfile& profile, const std::string& glRenderer, int width,
-                                         int height, const MachineDescription& machine) {
+                                         int height, const MachineDescription& machine, const std::string& shading) {
     std::vector<std::string> warnings;
+    if (shading != profile.shading) {
+        warnings.push_back("the profile was measured with --shading " + profile.shading + ", this is " + shading +
+                           ": per-pixel costs differ");
+    }
     if (!glRenderer.empty() && glRenderer != profile.glRenderer) {
         warnings.push_back("the profile was measured with renderer '" + profile.glRenderer + "', this is '" +
                            glRenderer + "': predictions may be off");

@@ -3,9 +3,9 @@
 // The Renderer is the front: it owns GPU copies of every level of every object of one scene
 // and draws any Combination from any Camera into an offscreen framebuffer (RGBA8 color +
 // float depth). The backend is a Platform (OSMesa's llvmpipe by default: OpenGL 4.5 core in
-// software, no GPU, no display). Shading is Lambert + ambient with the base color factor
-// times the base-color texture; depth test on, no blending, no MSAA, so the same inputs give
-// bit-identical pixels.
+// software, no GPU, no display). Shading is the papers' Lambert + ambient on the base color, or
+// glTF metallic-roughness PBR (RenderSettings::shading); no MSAA, dithering off, so the same
+// inputs give bit-identical pixels.
 //
 // Layers: renderLayer(i, k) draws object i at level k alone; composite() rebuilds a frame
 // from one layer per object by nearest depth. Because the rasterizer is deterministic, a
@@ -29,11 +29,31 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// How surfaces are lit (docs/renderer.md "Shading").
+enum class Shading : std::uint8_t {
+    // The papers' shading: base color x (ambient + (1 - ambient) max(n.l, 0)), two-sided, no
+    // other material property; byte-identical to lodopt's figures measured with it.
+    Lambert,
+    // glTF 2.0 metallic-roughness as an engine draws it: every material property, alpha modes,
+    // back-face culling, the light rig below, PBR Neutral tone mapping, sRGB output.
+    Pbr,
+};
+// "lambert" / "pbr"; parseShading throws std::invalid_argument on anything else.
+const char* shadingName(Shading shading);
+Shading parseShading(const std::string& name);
+
 struct RenderSettings {
     int width = 512;   // pixels, 1..16384
     int height = 512;  // pixels, 1..16384
+    Shading shading = Shading::Lambert;
     glm::vec3 lightDirection{-0.4f, -1.0f, -0.3f};  // world space, towards the scene
-    float ambient = 0.3f;                           // 0..1 share of unlit color
+    float ambient = 0.3f;                           // Lambert: 0..1 share of unlit color
+    // PBR light rig: the key light's irradiance on a surface facing it (linear, white), and a
+    // hemisphere ambient (irradiance from straight up / straight down, blended by n.y; diffuse
+    // only, no image-based specular).
+    float keyIlluminance = 2.5f;
+    glm::vec3 skyIrradiance{1.0f};
+    glm::vec3 groundIrradiance{0.3f};
     // Sky; exact multiples of 1/255 so the cleared bytes are (158, 194, 230, 255) everywhere.
     glm::vec4 clearColor{158.0f / 255.0f, 194.0f / 255.0f, 230.0f / 255.0f, 1.0f};
 };

@@ -35,18 +35,78 @@ struct Texture {
     std::vector<std::uint8_t> rgba;
 };
 
+// How a texture is read (glTF 2.0 §3.8.4 samplers). The defaults are what a glTF texture
+// without a sampler gets: repeat, linear filtering, trilinear mipmaps.
+enum class WrapMode : std::uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+enum class FilterMode : std::uint8_t { Nearest, Linear };
+enum class MipmapMode : std::uint8_t { None, Nearest, Linear };
+struct SamplerState {
+    WrapMode wrapS = WrapMode::Repeat;
+    WrapMode wrapT = WrapMode::Repeat;
+    FilterMode magFilter = FilterMode::Linear;
+    FilterMode minFilter = FilterMode::Linear;
+    MipmapMode mipmap = MipmapMode::Linear;
+    bool operator==(const SamplerState&) const = default;
+};
+
+// KHR_texture_transform: uv' = translate(offset) * rotate(rotation) * scale(scale) * uv, the
+// extension's matrix (rotation in radians; positive turns UVs clockwise, as the spec's matrix).
+struct TextureTransform {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;
+    glm::vec2 scale{1.0f};
+    bool isIdentity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
+    glm::mat3 matrix() const;  // column-major, applied to (u, v, 1)
+};
+
+// A material's use of a texture: which image, which UV set, how it is sampled and transformed.
+struct TextureRef {
+    int texture = -1;  // index into Scene::textures, -1 for none
+    int texCoord = 0;  // TEXCOORD_<n>: 0 or 1
+    SamplerState sampler;
+    TextureTransform transform;
+    bool present() const { return texture >= 0; }
+};
+
+// glTF 2.0 alphaMode: OPAQUE ignores alpha, MASK discards below alphaCutoff, BLEND composites.
+enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
+
+// glTF 2.0 metallic-roughness material (§3.9). Defaults are the spec's (a material with no
+// properties, also used for meshes without one). Factors are linear; base color and emissive
+// images hold sRGB-encoded values, the others linear data.
 struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};  // linear multiplier of the texture (or the color alone)
-    int baseColorTexture = -1;        // index into Scene::textures, -1 for none
+    TextureRef baseColorTexture;
+    float metallicFactor = 1.0f;
+    float roughnessFactor = 1.0f;
+    TextureRef metallicRoughnessTexture;  // blue = metallic, green = roughness
+    TextureRef normalTexture;             // tangent space, [0, 1] -> [-1, 1]
+    float normalScale = 1.0f;
+    TextureRef occlusionTexture;  // red channel
+    float occlusionStrength = 1.0f;
+    TextureRef emissiveTexture;
+    glm::vec3 emissiveFactor{0.0f};
+    float emissiveStrength = 1.0f;  // KHR_materials_emissive_strength
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;
+    bool doubleSided = false;
+    bool unlit = false;  // KHR_materials_unlit: base color only, no lighting
 };
 
+// A material for the built-in scenes: a rough dielectric drawn from both sides (their leaf
+// cards and open meshes have no back side), with an optional base-color texture.
+Material diffuseMaterial(std::string name, glm::vec3 color, int baseColorTexture = -1);
+
 // One draw call: triangles with one material. Normals always present (generated if the
-// source had none); uvs empty or one per position.
+// source had none); the other attributes empty or one per position.
 struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
-    std::vector<glm::vec2> uvs;
+    std::vector<glm::vec2> uvs;          // TEXCOORD_0
+    std::vector<glm::vec2> uvs1;         // TEXCOORD_1
+    std::vector<glm::vec4> tangents;     // xyz unit tangent, w = +-1 bitangent sign (glTF TANGENT)
+    std::vector<glm::vec4> colors;       // COLOR_0, linear RGBA
     std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
     int material = -1;                   // index into Scene::materials, -1 for the default
 };
@@ -62,7 +122,7 @@ struct Bounds {
 struct LevelStats {
     std::uint64_t vertices = 0;
     std::uint64_t triangles = 0;
-    std::uint64_t textureBytes = 0;  // distinct textures referenced, width*height*4 each
+    std::uint64_t textureBytes = 0;  // distinct textures its materials use, width*height*4 each
     std::uint32_t drawCalls = 0;     // meshes (one material each)
     Bounds bounds;                   // object space
 };
@@ -131,6 +191,14 @@ Bounds worldBounds(const Object& object, int level);
 
 // Fills `mesh.normals` with area-weighted vertex normals.
 void computeNormals(Mesh& mesh);
+// Fills `mesh.tangents` from the normals and the UV set `texCoord` (0 or 1, which must be
+// present) the way MikkTSpace builds a tangent frame: per triangle corner the tangent and
+// bitangent from the UV derivatives, each corner weighted by its angle, summed per vertex, made
+// orthogonal to the normal (Gram-Schmidt), w the sign of -dP/dv against cross(normal, tangent)
+// (glTF's v runs down the image, a normal map's green up it). Unlike MikkTSpace, vertices are not split where mirrored
+// UV islands meet (the sums are averaged there). A vertex whose triangles all have degenerate UVs gets a unit vector
+// orthogonal to its normal.
+void computeTangents(Mesh& mesh, int texCoord = 0);
 
 // Checks the invariants above (indices in range, normals/uvs sized, material and texture
 // indices valid, at least one level per object); throws SceneError naming the element.

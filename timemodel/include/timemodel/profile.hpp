@@ -91,6 +91,7 @@ struct DeviceProfile {
     std::string glVersion;
     int width = 0;
     int height = 0;
+    std::string shading = "lambert";  // renderer::Shading by name; files without it: lambert
     std::string scene;
     std::uint32_t sceneSeed = 1;
     std::uint64_t seed = 1;  // calibration plan seed
@@ -115,10 +116,11 @@ DeviceProfile loadProfile(const std::string& path);
 std::unique_ptr<TimeModel> modelFromProfile(const DeviceProfile& profile, const std::string& name = "");
 
 // Why a profile may not fit the current setup: a different renderer string, render size,
-// CPU model or core count (one sentence each; empty when it matches). Empty `glRenderer`
-// skips that check.
+// shading, CPU model or core count (one sentence each; empty when it matches). Empty
+// `glRenderer` skips that check.
 std::vector<std::string> profileWarnings(const DeviceProfile& profile, const std::string& glRenderer, int width,
-                                         int height, const MachineDescription& machine);
+                                         int height, const MachineDescription& machine,
+                                         const std::string& shading = "lambert");
 
 // Scenes with a profile built into the library.
 std::vector<std::string> shippedProfileScenes();
