@@ -1,0 +1,179 @@
+#!/usr/bin/env node
+// "What the validator accepts, lodopt reads": runs the Khronos glTF-Validator over every
+// .gltf/.glb under DATA/gltf and DATA/gltf-invalid (and, with --pack, over copies of the shared
+// models packed by gltfpack and glTF-Transform), then `lodopt scene info FILE --json` over each.
+// A file with 0 validator errors must load (exit 0) or be refused with exit 2 and a message
+// naming exactly one required extension lodopt cannot decode; anything else is a violation.
+//
+//   node validate_corpus.mjs --data ../shared/data --lodopt build/cli/lodopt [--out DIR]
+//        [--pack none|some|all] [--json]
+// --pack: none (default); some: BoxTextured and DenseSphere; all: every model under
+// DATA/gltf/models, DATA/gltf/msft_lod and DATA/gltf/render-tests. Each is packed four ways:
+// gltfpack (default), gltfpack -cc, gltf-transform draco, gltf-transform webp (into --out, a
+// temporary folder when not given). Writes OUT/validate.json and OUT/validate.md when --out is
+// given; prints the table (or the JSON with --json). Exit: 0 no violation, 1 a violation or a
+// tool failed, 2 bad usage.
+import { spawn, spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import { createRequire } from 'node:module';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { parseArguments, UsageError, writeFileAtomically } from './render_threejs.mjs';
+
+const kHarnessDir = path.dirname(fileURLToPath(import.meta.url));
+const kBin = path.join(kHarnessDir, 'node_modules', '.bin');
+
+// Every .gltf/.glb under `dir`, sorted.
+export function findModels(dir) {
+    const found = [];
+    const walk = (folder) => {
+        for (const entry of fs.readdirSync(folder, { withFileTypes: true }).sort((a, b) => a.name.localeCompare(b.name))) {
+            const full = path.join(folder, entry.name);
+            if (entry.isDirectory()) walk(full);
+            else if (/\.(gltf|glb)$/i.test(entry.name)) found.push(full);
+        }
+    };
+    if (fs.existsSync(dir)) walk(dir);
+    return found;
+}
+
+// The validator's report of `file` with its external resources read from beside it.
+async function validate(validator, file) {
+    const bytes = new Uint8Array(fs.readFileSync(file));
+    const report = await validator.validateBytes(bytes, {
+        uri: path.basename(file), maxIssues: 0, writeTimestamp: false,
+        externalResourceFunction: (uri) => fs.promises.readFile(path.resolve(path.dirname(file), decodeURIComponent(uri)))
+            .then((data) => new Uint8Array(data)),
+    });
+    const errors = report.issues.messages.filter((m) => m.severity === 0).map((m) => m.code);
+    return { errors: report.issues.numErrors, codes: [...new Set(errors)], required: report.info?.extensionsRequired || [] };
+}
+
+// What `lodopt scene info FILE --json` does with `file`: {outcome, exit, message}.
+// outcome: 'loads' (exit 0), 'refused: <extension>' (exit 2 naming exactly one required
+// extension), 'failed' (anything else).
+export function lodoptOutcome(lodopt, file) {
+    const run = spawnSync(lodopt, ['scene', 'info', file, '--json'], { encoding: 'utf8', maxBuffer: 1 << 28, env: { ...process.env, CI: '1' } });
+    const message = (run.stderr || '').trim().split('\n').filter((line) => line.includes('error')).join(' | ') || (run.stderr || '').trim();
+    if (run.status === 0) return { outcome: 'loads', exit: 0, message: '' };
+    const named = [...(run.stderr || '').matchAll(/extensionsRequired: (\S+) is not supported/g)].map((m) => m[1]);
+    if (run.status === 2 && new Set(named).size === 1) return { outcome: `refused: ${named[0]}`, exit: 2, message };
+    return { outcome: 'failed', exit: run.status === null ? `signal ${run.signal}` : run.status, message };
+}
+
+function runTool(command, args) {
+    return new Promise((resolve) => {
+        const child = spawn(command, args, { stdio: ['ignore', 'ignore', 'pipe'] });
+        let errors = '';
+        child.stderr.on('data', (chunk) => { errors = (errors + chunk).slice(-2000); });
+        child.on('exit', (code) => resolve({ code, errors }));
+        child.on('error', (error) => resolve({ code: -1, errors: error.message }));
+    });
+}
+
+// Packs `model` four ways into `dir`; resolves to the files made (a failed packer is reported).
+async function pack(model, name, dir, problems) {
+    const ways = [
+        ['gltfpack', `${name}.gltfpack.glb`, (out) => [path.join(kBin, 'gltfpack'), ['-i', model, '-o', out]]],
+        ['gltfpack -cc', `${name}.gltfpack-cc.glb`, (out) => [path.join(kBin, 'gltfpack'), ['-i', model, '-o', out, '-cc']]],
+        ['gltf-transform draco', `${name}.draco.glb`, (out) => [path.join(kBin, 'gltf-transform'), ['draco', model, out]]],
+        ['gltf-transform webp', `${name}.webp.glb`, (out) => [path.join(kBin, 'gltf-transform'), ['webp', model, out]]],
+    ];
+    const made = [];
+    for (const [way, file, command] of ways) {
+        const out = path.join(dir, file);
+        const [tool, args] = command(out);
+        const run = await runTool(tool, args);
+        if (run.code === 0 && fs.existsSync(out)) made.push({ file: out, packedBy: way, source: model });
+        else problems.push(`${way} ${model}: exit ${run.code}: ${run.errors.trim().split('\n').slice(-2).join(' ')}`);
+    }
+    return made;
+}
+
+// Runs the whole check; resolves to {files: [...], summary, violations, problems}.
+export async function checkCorpus({ data, lodopt, pack: packWhich = 'none', packDir }) {
+    const require = createRequire(import.meta.url);
+    const validator = require(path.join(kHarnessDir, 'node_modules', 'gltf-validator'));
+    const inputs = [...findModels(path.join(data, 'gltf')), ...findModels(path.join(data, 'gltf-invalid'))]
+        .map((file) => ({ file, packedBy: '', source: '' }));
+    const problems = [];
+    if (packWhich !== 'none') {
+        const sources = packWhich === 'all'
+            ? ['models', 'msft_lod', 'render-tests'].flatMap((dir) => findModels(path.join(data, 'gltf', dir)))
+            : [path.join(data, 'gltf/render-tests/BoxTextured/glTF/BoxTextured.gltf'),
+               path.join(data, 'gltf/models/gltf-transform/DenseSphere.glb')];
+        const names = new Set();
+        for (const source of sources) {
+            let name = path.basename(source).replace(/\.(gltf|glb)$/i, '');
+            if (path.basename(path.dirname(source)) === 'glTF-Binary') name += '-binary';
+            while (names.has(name)) name += '_';
+            names.add(name);
+            inputs.push(...await pack(source, name, packDir, problems));
+        }
+    }
+    const files = [];
+    for (const input of inputs) {
+        let report;
+        try { report = await validate(validator, input.file); }
+        catch (error) { report = { errors: -1, codes: [`validator could not read the file: ${error}`], required: [] }; }
+        const lodoptResult = lodoptOutcome(lodopt, input.file);
+        const valid = report.errors === 0;
+        files.push({
+            file: path.relative(data, input.file).startsWith('..') ? input.file : path.relative(data, input.file),
+            packed_by: input.packedBy, source: input.source ? path.relative(data, input.source) : '',
+            validator_errors: report.errors, validator_codes: report.codes, extensions_required: report.required,
+            lodopt: lodoptResult.outcome, lodopt_exit: lodoptResult.exit, lodopt_message: lodoptResult.message,
+            violation: valid && lodoptResult.outcome === 'failed',
+        });
+    }
+    const summary = {};
+    for (const file of files) {
+        const group = file.validator_errors === 0 ? 'valid' : 'invalid';
+        const key = `${group}\t${file.packed_by ? 'packed' : 'shared'}\t${file.lodopt}`;
+        summary[key] = (summary[key] || 0) + 1;
+    }
+    return { files, summary, violations: files.filter((f) => f.violation), problems };
+}
+
+export function markdownTable(result) {
+    const lines = ['| validator | files | lodopt scene info | count |', '|---|---|---|---|'];
+    for (const key of Object.keys(result.summary).sort()) {
+        const [group, origin, outcome] = key.split('\t');
+        lines.push(`| ${group === 'valid' ? '0 errors' : '≥ 1 error'} | ${origin} | ${outcome} | ${result.summary[key]} |`);
+    }
+    return lines.join('\n');
+}
+
+async function main() {
+    const options = parseArguments(process.argv.slice(2), ['json']);
+    if (!options.data || !options.lodopt) throw new UsageError('give --data DIR (../shared/data) and --lodopt EXE');
+    if (!['none', 'some', 'all'].includes(options.pack || 'none')) throw new UsageError('--pack: none, some or all');
+    if (options.out) fs.mkdirSync(options.out, { recursive: true });
+    const packDir = options.pack && options.pack !== 'none'
+        ? (options.out ? path.join(options.out, 'packed') : fs.mkdtempSync(path.join(os.tmpdir(), 'lodopt-packed-'))) : null;
+    if (packDir) fs.mkdirSync(packDir, { recursive: true });
+    const result = await checkCorpus({ data: path.resolve(options.data), lodopt: path.resolve(options.lodopt), pack: options.pack || 'none', packDir });
+    if (packDir && !options.out) fs.rmSync(packDir, { recursive: true, force: true });
+    const table = markdownTable(result);
+    if (options.out) {
+        writeFileAtomically(path.join(options.out, 'validate.json'), JSON.stringify(result, null, 1));
+        const failing = result.files.filter((f) => f.lodopt === 'failed')
+            .map((f) => `| ${f.file} | ${f.validator_errors} | ${f.lodopt_exit} | ${f.lodopt_message.replace(/\|/g, '\\|').slice(0, 200)} |`);
+        writeFileAtomically(path.join(options.out, 'validate.md'), `${table}\n\nFiles lodopt fails on:\n\n| file | validator errors | exit | message |\n|---|---|---|---|\n${failing.join('\n')}\n`);
+    }
+    if (options.json) process.stdout.write(JSON.stringify(result, null, 1) + '\n');
+    else {
+        process.stdout.write(`${table}\n`);
+        for (const v of result.violations) process.stdout.write(`VIOLATION: ${v.file}: validator 0 errors, lodopt exit ${v.lodopt_exit}: ${v.lodopt_message}\n`);
+        for (const p of result.problems) process.stdout.write(`PACKER FAILED: ${p}\n`);
+    }
+    return result.violations.length === 0 && result.problems.length === 0 ? 0 : 1;
+}
+
+if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
+    main().then((code) => process.exit(code), (error) => {
+        process.stderr.write(`validate_corpus: ${error instanceof UsageError ? '' : 'error: '}${error.stack || error.message}\n`);
+        process.exit(error instanceof UsageError ? 2 : 1);
+    });
+}
