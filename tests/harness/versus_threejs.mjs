@@ -30,7 +30,11 @@ function run(executable, args) {
     return { status: result.status, stdout: result.stdout, message, ms };
 }
 
-// Mean absolute difference over R, G and B in bytes, and the difference image (×4, clamped).
+const kSky = [158, 194, 230];
+
+// Mean absolute difference over R, G and B in bytes, the difference image (×4, clamped), the
+// share of pixels that are not sky in either image (coverage) and the share that is sky in
+// exactly one of them (silhouette: where geometry or camera disagree, whatever the shading).
 function difference(fileA, fileB) {
     const a = decodePng(fs.readFileSync(fileA));
     const b = decodePng(fs.readFileSync(fileB));
@@ -42,7 +46,15 @@ function difference(fileA, fileB) {
         sum += d;
         diff[i] = Math.min(255, d * 4);
     }
-    return { meanAbsDiff: sum / a.rgb.length, png: encodePng(a.width, a.height, diff) };
+    const isSky = (rgb, p) => rgb[p * 3] === kSky[0] && rgb[p * 3 + 1] === kSky[1] && rgb[p * 3 + 2] === kSky[2];
+    let covered = 0, silhouette = 0;
+    const pixels = a.width * a.height;
+    for (let p = 0; p < pixels; ++p) {
+        const skyA = isSky(a.rgb, p), skyB = isSky(b.rgb, p);
+        covered += !skyA || !skyB;
+        silhouette += skyA !== skyB;
+    }
+    return { meanAbsDiff: sum / a.rgb.length, coverage: covered / pixels, silhouette: silhouette / pixels, png: encodePng(a.width, a.height, diff) };
 }
 
 // Runs the comparison; resolves to {rows, assets, mean_ssim}. Each row: asset, view, view_name,
@@ -94,30 +106,35 @@ export async function versus({ data, lodopt, out, shading = 'pbr', size = '256x2
         row.ssim = JSON.parse(metrics.stdout).ssim.candidate;
         const diff = difference(row.images.lodopt, row.images.three);
         row.mean_abs_diff = diff.meanAbsDiff;
+        row.coverage = diff.coverage;
+        row.silhouette_diff = diff.silhouette;
         writeFileAtomically(row.images.diff, diff.png);
     }
+    // Means leave out views where both images are all sky (a flat model seen edge-on): they
+    // score 1 whatever the shading.
     const assets = {};
     for (const row of rows) {
-        if (row.ssim === undefined) continue;
+        if (row.ssim === undefined || row.coverage === 0) continue;
         (assets[row.asset] ||= []).push(row.ssim);
     }
     const assetMeans = Object.fromEntries(Object.entries(assets).map(([asset, values]) => [asset, values.reduce((s, v) => s + v, 0) / values.length]));
-    const scored = rows.filter((row) => row.ssim !== undefined);
+    const scored = rows.filter((row) => row.ssim !== undefined && row.coverage > 0);
     const meanSsim = scored.length ? scored.reduce((s, row) => s + row.ssim, 0) / scored.length : null;
     return { shading, size, rows, asset_mean_ssim: assetMeans, mean_ssim: meanSsim };
 }
 
 function writeTables(result, out) {
-    const fixed = (value, digits) => (value === undefined || value === null ? '' : Number(value).toFixed(digits));
-    const csv = ['asset,view,view_name,ssim,mean_abs_diff,lodopt_ms,three_ms,status'];
-    const md = [`lodopt (--shading ${result.shading}) against three.js at ${result.size}: SSIM on gray, three.js as the reference; mean |diff| over RGB bytes; times are each renderer's wall time for the view (lodopt: the whole process; three.js: in the page, loading included for a model's first view).`, '',
-        '| asset | view | SSIM | mean abs diff | lodopt ms | three.js ms | status |', '|---|---|---|---|---|---|---|'];
+    const fixed = (value, digits) => (Number.isFinite(value) ? Number(value).toFixed(digits) : '');
+    const csv = ['asset,view,view_name,ssim,mean_abs_diff,coverage,silhouette_diff,lodopt_ms,three_ms,status'];
+    const md = [`lodopt (--shading ${result.shading}) against three.js at ${result.size}: SSIM on gray, three.js as the reference; mean |diff| over RGB bytes; coverage: pixels not sky in either image; silhouette: pixels sky in exactly one (geometry or camera disagree); times are each renderer's wall time for the view (lodopt: the whole process; three.js: in the page, loading included for a model's first view).`, '',
+        '| asset | view | SSIM | mean abs diff | coverage % | silhouette % | lodopt ms | three.js ms | status |', '|---|---|---|---|---|---|---|---|---|'];
     for (const row of result.rows) {
-        csv.push([row.asset, row.view, row.view_name, fixed(row.ssim, 4), fixed(row.mean_abs_diff, 2), fixed(row.lodopt_ms, 0), fixed(row.three_ms, 0),
+        csv.push([row.asset, row.view, row.view_name, fixed(row.ssim, 4), fixed(row.mean_abs_diff, 2), fixed(row.coverage, 4), fixed(row.silhouette_diff, 4),
+            fixed(row.lodopt_ms, 0), fixed(row.three_ms, 0),
             row.status].map((v) => `"${String(v).replace(/"/g, '""')}"`).join(','));
-        md.push(`| ${row.asset} | ${row.view === '' ? '' : `${row.view} ${row.view_name}`} | ${fixed(row.ssim, 4)} | ${fixed(row.mean_abs_diff, 2)} | ${fixed(row.lodopt_ms, 0)} | ${fixed(row.three_ms, 0)} | ${row.status.replace(/\|/g, '\\|')} |`);
+        md.push(`| ${row.asset} | ${row.view === '' ? '' : `${row.view} ${row.view_name}`} | ${fixed(row.ssim, 4)} | ${fixed(row.mean_abs_diff, 2)} | ${fixed(row.coverage * 100, 1)} | ${fixed(row.silhouette_diff * 100, 2)} | ${fixed(row.lodopt_ms, 0)} | ${fixed(row.three_ms, 0)} | ${row.status.replace(/\|/g, '\\|')} |`);
     }
-    md.push('', '| asset | mean SSIM over its views |', '|---|---|');
+    md.push('', '| asset | mean SSIM over its views (all-sky views left out) |', '|---|---|');
     for (const [asset, mean] of Object.entries(result.asset_mean_ssim)) md.push(`| ${asset} | ${mean.toFixed(4)} |`);
     md.push(`| **all views** | **${fixed(result.mean_ssim, 4)}** |`);
     writeFileAtomically(path.join(out, 'versus.csv'), csv.join('\n') + '\n');
