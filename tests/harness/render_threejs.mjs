@@ -192,13 +192,14 @@ export function parseSize(text) {
 }
 export class UsageError extends Error {}
 
-// --name value pairs and bare --flags (those in `flags`).
-export function parseArguments(argv, flags = []) {
+// --name value pairs (names in `names`) and bare --flags (names in `flags`).
+export function parseArguments(argv, names, flags = []) {
     const options = {};
     for (let i = 0; i < argv.length; ++i) {
         const word = argv[i];
         if (!word.startsWith('--')) throw new UsageError(`unexpected argument '${word}'`);
         const name = word.slice(2);
+        if (!names.includes(name) && !flags.includes(name)) throw new UsageError(`unknown option ${word}`);
         if (flags.includes(name)) options[name] = true;
         else if (i + 1 < argv.length) options[name] = argv[++i];
         else throw new UsageError(`${word} needs a value`);
@@ -207,7 +208,8 @@ export function parseArguments(argv, flags = []) {
 }
 
 async function main() {
-    const options = parseArguments(process.argv.slice(2), ['probe', 'json']);
+    const options = parseArguments(process.argv.slice(2), ['model', 'position', 'target', 'up', 'fov', 'near', 'far', 'size', 'out',
+        'view', 'lodopt', 'jobs', 'chromium', 'job-timeout'], ['probe', 'json']);
     const log = (message) => process.stderr.write(`render_threejs: ${message}\n`);
     let jobs;
     if (options.probe) jobs = [{ kind: 'probe' }];
@@ -238,8 +240,9 @@ async function main() {
 }
 
 if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
-    main().then((code) => process.exit(code), (error) => {
+    // exitCode, not exit(): a large JSON written to a pipe must drain before node ends.
+    main().then((code) => { process.exitCode = code; }, (error) => {
         process.stderr.write(`render_threejs: ${error instanceof UsageError ? '' : 'error: '}${error.message}\n`);
-        process.exit(error instanceof UsageError ? 2 : 1);
+        process.exitCode = error instanceof UsageError ? 2 : 1;
     });
 }

@@ -16,8 +16,9 @@
 // DATA/gltf/models, DATA/gltf/msft_lod and DATA/gltf/render-tests. Each is packed four ways:
 // gltfpack (default), gltfpack -cc, gltf-transform draco, gltf-transform webp (into --out, a
 // temporary folder when not given). Writes OUT/validate.json and OUT/validate.md when --out is
-// given; prints the table (or the JSON with --json). Exit: 0 no violation, 1 a violation or a
-// tool failed, 2 bad usage.
+// given; prints the table (or the JSON with --json). A packer that fails on a source (gltfpack
+// refuses kenney's cakeBirthday and tile, whose scene roots are also children) is listed in
+// `problems`, not counted. Exit: 0 no violation, 1 a violation or a tool failed, 2 bad usage.
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
@@ -192,7 +193,7 @@ export function markdownTable(result) {
 }
 
 async function main() {
-    const options = parseArguments(process.argv.slice(2), ['json', 'valid-only']);
+    const options = parseArguments(process.argv.slice(2), ['data', 'lodopt', 'out', 'pack', 'known', 'concurrency'], ['json', 'valid-only']);
     if (!options.data || !options.lodopt) throw new UsageError('give --data DIR (../shared/data) and --lodopt EXE');
     if (!['none', 'some', 'all'].includes(options.pack || 'none')) throw new UsageError('--pack: none, some or all');
     if (options.out) fs.mkdirSync(options.out, { recursive: true });
@@ -215,15 +216,16 @@ async function main() {
     else {
         process.stdout.write(`${table}\n`);
         for (const v of result.violations) process.stdout.write(`VIOLATION: ${v.file}: validator 0 errors, lodopt exit ${v.lodopt_exit}: ${v.lodopt_message}\n`);
-        for (const p of result.problems) process.stdout.write(`PACKER FAILED: ${p}\n`);
+        for (const p of result.problems) process.stdout.write(`packer failed (not counted): ${p}\n`);
         for (const name of result.known_now_passing) process.stdout.write(`now passes, remove from the known list: ${name}\n`);
     }
-    return result.violations.length === 0 && result.problems.length === 0 ? 0 : 1;
+    return result.violations.length === 0 ? 0 : 1;
 }
 
 if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
-    main().then((code) => process.exit(code), (error) => {
-        process.stderr.write(`validate_corpus: ${error instanceof UsageError ? '' : 'error: '}${error.stack || error.message}\n`);
-        process.exit(error instanceof UsageError ? 2 : 1);
+    // exitCode, not exit(): a large JSON written to a pipe must drain before node ends.
+    main().then((code) => { process.exitCode = code; }, (error) => {
+        process.stderr.write(`validate_corpus: ${error instanceof UsageError ? error.message : `error: ${error.stack || error.message}`}\n`);
+        process.exitCode = error instanceof UsageError ? 2 : 1;
     });
 }

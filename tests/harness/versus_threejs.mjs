@@ -8,8 +8,9 @@
 //
 //   node versus_threejs.mjs --data ../shared/data --lodopt build/cli/lodopt [--out DIR]
 //        [--shading pbr|lambert|default] [--size 256x256] [--only NAME,NAME] [--json]
-// --data: the models are every .gltf/.glb under DATA/gltf/{models,msft_lod,render-tests};
-// --only keeps those whose path (relative to DATA/gltf) contains one of the names.
+// --data: the models are every .gltf/.glb under DATA/gltf/{models,msft_lod,render-tests}
+// (--dir DIR instead: every .gltf/.glb under DIR, e.g. packed copies from validate_corpus.mjs);
+// --only keeps those whose path (relative to DATA/gltf, or DIR) contains one of the names.
 // --shading: passed to `lodopt render --shading` (default pbr); `default` passes nothing (the
 // renderer's own shading, for a lodopt without the option). --out: out/versus_threejs.
 // Exit: 0 every pair rendered and scored (a model lodopt refuses for a required extension is
@@ -59,10 +60,10 @@ function difference(fileA, fileB) {
 
 // Runs the comparison; resolves to {rows, assets, mean_ssim}. Each row: asset, view, view_name,
 // status ('ok' or what failed), ssim, mean_abs_diff, lodopt_ms, three_ms, images.
-export async function versus({ data, lodopt, out, shading = 'pbr', size = '256x256', only = [], log = () => {} }) {
+export async function versus({ data, dir, lodopt, out, shading = 'pbr', size = '256x256', only = [], log = () => {} }) {
     const [width, height] = parseSize(size);
-    const gltfDir = path.join(data, 'gltf');
-    const models = ['models', 'msft_lod', 'render-tests'].flatMap((dir) => findModels(path.join(gltfDir, dir)))
+    const gltfDir = dir || path.join(data, 'gltf');
+    const models = (dir ? findModels(dir) : ['models', 'msft_lod', 'render-tests'].flatMap((sub) => findModels(path.join(gltfDir, sub))))
         .filter((file) => only.length === 0 || only.some((name) => path.relative(gltfDir, file).includes(name)));
     const imagesDir = path.join(out, 'images');
     fs.mkdirSync(imagesDir, { recursive: true });
@@ -144,12 +145,12 @@ function writeTables(result, out) {
 }
 
 async function main() {
-    const options = parseArguments(process.argv.slice(2), ['json']);
-    if (!options.data || !options.lodopt) throw new UsageError('give --data DIR (../shared/data) and --lodopt EXE');
+    const options = parseArguments(process.argv.slice(2), ['data', 'dir', 'lodopt', 'out', 'shading', 'size', 'only'], ['json']);
+    if (!(options.data || options.dir) || !options.lodopt) throw new UsageError('give --data DIR (../shared/data) or --dir DIR, and --lodopt EXE');
     const out = path.resolve(options.out || 'out/versus_threejs');
     const log = (message) => process.stderr.write(`versus_threejs: ${message}\n`);
     const result = await versus({
-        data: path.resolve(options.data), lodopt: path.resolve(options.lodopt), out, shading: options.shading || 'pbr',
+        data: options.data && path.resolve(options.data), dir: options.dir && path.resolve(options.dir), lodopt: path.resolve(options.lodopt), out, shading: options.shading || 'pbr',
         size: options.size || '256x256', only: options.only ? options.only.split(',') : [], log,
     });
     const table = writeTables(result, out);
@@ -158,8 +159,9 @@ async function main() {
 }
 
 if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) {
-    main().then((code) => process.exit(code), (error) => {
-        process.stderr.write(`versus_threejs: ${error instanceof UsageError ? '' : 'error: '}${error.stack || error.message}\n`);
-        process.exit(error instanceof UsageError ? 2 : 1);
+    // exitCode, not exit(): a large JSON written to a pipe must drain before node ends.
+    main().then((code) => { process.exitCode = code; }, (error) => {
+        process.stderr.write(`versus_threejs: ${error instanceof UsageError ? error.message : `error: ${error.stack || error.message}`}\n`);
+        process.exitCode = error instanceof UsageError ? 2 : 1;
     });
 }
