@@ -26,6 +26,16 @@ using cli_test::runShell;
 const fs::path kHarness = fs::path(LODOPT_SOURCE_DIR) / "tests" / "harness";
 const fs::path kShared = LODOPT_SHARED_DATA_DIR;
 const fs::path kBoxTextured = kShared / "gltf/render-tests/BoxTextured/glTF/BoxTextured.gltf";
+// Ours: a white quad (metallic 0, roughness 1) facing the key light, its camera on the light's side.
+const fs::path kWhiteSurface = kHarness / "probe" / "white_facing_key_light.gltf";
+// What three.js writes for it (docs/harness.md "What three.js computes").
+constexpr int kWhiteSurfaceByte = 242;
+
+// The bytes of the pixel at (x, y) of `image` (rows top to bottom).
+const std::uint8_t* pixelAt(const renderer::LoadedImage& image, int x, int y) {
+    return &image.pixels[(static_cast<std::size_t>(y) * image.width + x) * image.channels];
+}
+
 constexpr std::uint8_t kSky[3] = {158, 194, 230};
 
 // `path` in single quotes for /bin/sh (the paths here hold no quote).
@@ -34,6 +44,13 @@ std::string quoted(const fs::path& path) {
     text.insert(text.begin(), '\'');
     text.push_back('\'');
     return text;
+}
+
+// The first of the views `lodopt scene info MODEL --json` gives.
+nlohmann::json firstView(const fs::path& model) {
+    const auto info = cli_test::runLodopt("scene info " + quoted(model) + " --json");
+    EXPECT_EQ(info.exitCode, 0) << model;
+    return nlohmann::json::parse(info.output)["views"].at(0);
 }
 
 // What is missing to run the harnesses, with what installs it; empty when nothing is.
@@ -95,30 +112,33 @@ protected:
 // The three.js side alone: BoxTextured from lodopt's first default view, plus the lighting
 // probe (docs/harness.md "What three.js computes"), in one Chromium run.
 TEST_F(Harness, ThreeJsDrawsBoxTexturedOverTheExactSky) {
-    const auto info = cli_test::runLodopt("scene info " + quoted(kBoxTextured) + " --json");
-    ASSERT_EQ(info.exitCode, 0);
-    const nlohmann::json view = nlohmann::json::parse(info.output)["views"].at(0);
     const fs::path image = mDir / "box.png";
+    const fs::path white = mDir / "white.png";
     nlohmann::json jobs = nlohmann::json::array();
-    jobs.push_back({{"model", kBoxTextured.string()}, {"view", view}, {"width", 96}, {"height", 80}, {"out", image.string()}});
+    jobs.push_back({{"model", kBoxTextured.string()}, {"view", firstView(kBoxTextured)}, {"width", 96}, {"height", 80},
+                    {"out", image.string()}});
     jobs.push_back({{"kind", "probe"}});
+    jobs.push_back({{"model", kWhiteSurface.string()}, {"view", firstView(kWhiteSurface)}, {"width", 16}, {"height", 16},
+                    {"out", white.string()}});
     std::ofstream(mDir / "jobs.json") << jobs.dump();
 
     const NodeRun run = runNode(mDir / "err.txt", "render_threejs.mjs", "--jobs " + quoted(mDir / "jobs.json") + " --json --job-timeout 60");
     ASSERT_EQ(run.exitCode, 0) << run.err;
-    EXPECT_LT(run.seconds, 120.0) << "Chromium start and two jobs";
+    EXPECT_LT(run.seconds, 120.0) << "Chromium start and three jobs";
 
     const renderer::LoadedImage png = renderer::readImage(image.string());
     ASSERT_EQ(png.width, 96);
     ASSERT_EQ(png.height, 80);
     ASSERT_GE(png.channels, 3);
-    const auto pixel = [&](int x, int y) { return &png.pixels[(static_cast<std::size_t>(y) * png.width + x) * png.channels]; };
+    const auto pixel = [&](int x, int y) { return pixelAt(png, x, y); };
     for (const auto& [x, y] : {std::pair{0, 0}, {95, 0}, {0, 79}, {95, 79}}) {
         const std::uint8_t* p = pixel(x, y);
         EXPECT_EQ(p[0], kSky[0]) << "corner " << x << "," << y;
         EXPECT_EQ(p[1], kSky[1]) << "corner " << x << "," << y;
         EXPECT_EQ(p[2], kSky[2]) << "corner " << x << "," << y;
-        if (png.channels == 4) EXPECT_EQ(p[3], 255);
+        if (png.channels == 4) {
+            EXPECT_EQ(p[3], 255);
+        }
     }
     int notSky = 0;
     for (int y = 0; y < png.height; ++y) {
@@ -142,6 +162,11 @@ TEST_F(Harness, ThreeJsDrawsBoxTexturedOverTheExactSky) {
     EXPECT_NEAR(probe.at("linear_hemisphere").at(0).get<double>(), 0.30204, 1e-4);
     EXPECT_NEAR(probe.at("linear_both").at(0).get<double>(), 1.07445, 1e-4);
     EXPECT_EQ(probe.at("srgb_bytes_both"), nlohmann::json::array({242, 242, 242}));
+
+    // The same surface loaded by GLTFLoader from the glTF file lodopt's PBR test renders.
+    const renderer::LoadedImage whitePng = renderer::readImage(white.string());
+    ASSERT_EQ(whitePng.width, 16);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(pixelAt(whitePng, 8, 8)[k], kWhiteSurfaceByte);
 }
 
 // Every file of the shared corpus (and BoxTextured and DenseSphere packed by gltfpack, gltfpack
@@ -200,12 +225,32 @@ TEST_F(Harness, DISABLED_PbrMatchesThreeJs) {
                                     quoted(mDir / "out") +
                                     " --shading pbr --size 256x256 --only BoxTextured/glTF/,MetalRoughSpheresNoTextures/glTF/,"
                                     "OrientationTest/glTF/,TextureCoordinateTest/glTF/ --json");
-    ASSERT_EQ(run.exitCode, 0) << run.err;
+    ASSERT_TRUE(run.exitCode == 0 || run.exitCode == 1) << run.err;
     const nlohmann::json result = nlohmann::json::parse(run.out);
+    for (const auto& row : result.at("rows")) {
+        EXPECT_EQ(row.at("status"), "ok") << row.at("asset").get<std::string>() << " view " << row.at("view");
+    }
+    ASSERT_EQ(run.exitCode, 0);
     for (const auto& [asset, mean] : result.at("asset_mean_ssim").items()) {
         EXPECT_GE(mean.get<double>(), 0.90) << asset << " (see " << (mDir / "out" / "versus.md") << ")";
     }
     EXPECT_GE(result.at("mean_ssim").get<double>(), 0.95) << "see " << (mDir / "out" / "versus.md");
+}
+
+// lodopt's side of the lighting number: its PBR render of the white surface facing the key light
+// is the byte three.js writes (242; the glTF Appendix B BRDF gives 0.9495 after tone mapping and
+// sRGB, also 242), within one step. Needs no node or Chromium, only `--shading pbr`: disabled
+// until lodopt has it.
+TEST(HarnessLighting, DISABLED_PbrWhiteSurfaceFacingTheKeyLightIsThreeJsByte) {
+    const fs::path dir = fs::temp_directory_path() / ("lodopt-harness-" + std::to_string(::getpid()) + "-white");
+    fs::create_directories(dir);
+    const fs::path image = dir / "white.png";
+    const auto render = cli_test::runLodopt("render --scene " + quoted(kWhiteSurface) + " --view 0 --size 16x16 --shading pbr --out " +
+                                            quoted(image));
+    ASSERT_EQ(render.exitCode, 0);
+    const renderer::LoadedImage png = renderer::readImage(image.string());
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(pixelAt(png, 8, 8)[k], kWhiteSurfaceByte, 1);
+    fs::remove_all(dir);
 }
 
 }  // namespace
