@@ -109,8 +109,9 @@ protected:
     fs::path mDir;
 };
 
-// The three.js side alone: BoxTextured from lodopt's first default view, plus the lighting
-// probe (docs/harness.md "What three.js computes"), in one Chromium run.
+// The three.js side alone, in one Chromium run: BoxTextured from lodopt's first default view,
+// the lighting probe and the white-surface file (docs/harness.md "What three.js computes"), and
+// DenseSphere (Draco).
 TEST_F(Harness, ThreeJsDrawsBoxTexturedOverTheExactSky) {
     const fs::path image = mDir / "box.png";
     const fs::path white = mDir / "white.png";
@@ -120,11 +121,17 @@ TEST_F(Harness, ThreeJsDrawsBoxTexturedOverTheExactSky) {
     jobs.push_back({{"kind", "probe"}});
     jobs.push_back({{"model", kWhiteSurface.string()}, {"view", firstView(kWhiteSurface)}, {"width", 16}, {"height", 16},
                     {"out", white.string()}});
+    // Draco, decoded by three's wasm decoder served from node_modules (nothing fetched elsewhere).
+    const fs::path sphere = mDir / "sphere.png";
+    const nlohmann::json front = {{"position", {0, 0, 4}}, {"target", {0, 0, 0}}, {"up", {0, 1, 0}},
+                                  {"fov_y_degrees", 45}, {"near", 0.1}, {"far", 100}};
+    jobs.push_back({{"model", (kShared / "gltf/models/gltf-transform/DenseSphere.glb").string()}, {"view", front},
+                    {"width", 32}, {"height", 32}, {"out", sphere.string()}});
     std::ofstream(mDir / "jobs.json") << jobs.dump();
 
     const NodeRun run = runNode(mDir / "err.txt", "render_threejs.mjs", "--jobs " + quoted(mDir / "jobs.json") + " --json --job-timeout 60");
     ASSERT_EQ(run.exitCode, 0) << run.err;
-    EXPECT_LT(run.seconds, 120.0) << "Chromium start and three jobs";
+    EXPECT_LT(run.seconds, 120.0) << "Chromium start and four jobs";
 
     const renderer::LoadedImage png = renderer::readImage(image.string());
     ASSERT_EQ(png.width, 96);
@@ -167,6 +174,11 @@ TEST_F(Harness, ThreeJsDrawsBoxTexturedOverTheExactSky) {
     const renderer::LoadedImage whitePng = renderer::readImage(white.string());
     ASSERT_EQ(whitePng.width, 16);
     for (int k = 0; k < 3; ++k) EXPECT_EQ(pixelAt(whitePng, 8, 8)[k], kWhiteSurfaceByte);
+
+    const renderer::LoadedImage spherePng = renderer::readImage(sphere.string());
+    const std::uint8_t* centre = pixelAt(spherePng, 16, 16);
+    EXPECT_FALSE(centre[0] == kSky[0] && centre[1] == kSky[1] && centre[2] == kSky[2]) << "the Draco sphere is missing";
+    EXPECT_EQ(pixelAt(spherePng, 0, 0)[0], kSky[0]);
 }
 
 // Every file of the shared corpus (and BoxTextured and DenseSphere packed by gltfpack, gltfpack
