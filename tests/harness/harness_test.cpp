@@ -66,10 +66,12 @@ std::string missingTools() {
         }
     }
     const char* chromium = std::getenv("LODOPT_CHROMIUM");
-    const std::string probe = chromium ? "test -x " + quoted(chromium)
-                                       : "command -v chromium || command -v chromium-browser || command -v google-chrome";
+    const std::string probe = chromium
+                                  ? "test -x " + quoted(chromium)
+                                  : "command -v chromium || command -v chromium-browser || command -v google-chrome";
     if (runShell(probe + " >/dev/null 2>&1").exitCode != 0) {
-        missing += "Chromium is not installed (apt-get install chromium, or scripts/quickstart.sh; or set LODOPT_CHROMIUM); ";
+        missing +=
+            "Chromium is not installed (apt-get install chromium, or scripts/quickstart.sh; or set LODOPT_CHROMIUM); ";
     }
     return missing;
 }
@@ -116,20 +118,30 @@ TEST_F(Harness, ThreeJsDrawsBoxTexturedOverTheExactSky) {
     const fs::path image = mDir / "box.png";
     const fs::path white = mDir / "white.png";
     nlohmann::json jobs = nlohmann::json::array();
-    jobs.push_back({{"model", kBoxTextured.string()}, {"view", firstView(kBoxTextured)}, {"width", 96}, {"height", 80},
+    jobs.push_back({{"model", kBoxTextured.string()},
+                    {"view", firstView(kBoxTextured)},
+                    {"width", 96},
+                    {"height", 80},
                     {"out", image.string()}});
     jobs.push_back({{"kind", "probe"}});
-    jobs.push_back({{"model", kWhiteSurface.string()}, {"view", firstView(kWhiteSurface)}, {"width", 16}, {"height", 16},
+    jobs.push_back({{"model", kWhiteSurface.string()},
+                    {"view", firstView(kWhiteSurface)},
+                    {"width", 16},
+                    {"height", 16},
                     {"out", white.string()}});
     // Draco, decoded by three's wasm decoder served from node_modules (nothing fetched elsewhere).
     const fs::path sphere = mDir / "sphere.png";
     const nlohmann::json front = {{"position", {0, 0, 4}}, {"target", {0, 0, 0}}, {"up", {0, 1, 0}},
-                                  {"fov_y_degrees", 45}, {"near", 0.1}, {"far", 100}};
-    jobs.push_back({{"model", (kShared / "gltf/models/gltf-transform/DenseSphere.glb").string()}, {"view", front},
-                    {"width", 32}, {"height", 32}, {"out", sphere.string()}});
+                                  {"fov_y_degrees", 45},   {"near", 0.1},         {"far", 100}};
+    jobs.push_back({{"model", (kShared / "gltf/models/gltf-transform/DenseSphere.glb").string()},
+                    {"view", front},
+                    {"width", 32},
+                    {"height", 32},
+                    {"out", sphere.string()}});
     std::ofstream(mDir / "jobs.json") << jobs.dump();
 
-    const NodeRun run = runNode(mDir / "err.txt", "render_threejs.mjs", "--jobs " + quoted(mDir / "jobs.json") + " --json --job-timeout 60");
+    const NodeRun run = runNode(mDir / "err.txt", "render_threejs.mjs",
+                                "--jobs " + quoted(mDir / "jobs.json") + " --json --job-timeout 60");
     ASSERT_EQ(run.exitCode, 0) << run.err;
     EXPECT_LT(run.seconds, 120.0) << "Chromium start and four jobs";
 
@@ -212,9 +224,10 @@ TEST_F(Harness, EveryFileTheValidatorAcceptsLoadsOrNamesOneRequiredExtension) {
 // The comparison's pipeline with lodopt's shading of the day (no --shading option): it renders,
 // scores and writes its tables. Its SSIM says nothing yet (Lambert against PBR).
 TEST_F(Harness, VersusThreeJsRendersScoresAndWritesItsTables) {
-    const NodeRun run = runNode(mDir / "err.txt", "versus_threejs.mjs",
-                                "--data " + quoted(kShared) + " --lodopt " + quoted(LODOPT_EXECUTABLE) + " --out " +
-                                    quoted(mDir / "out") + " --shading default --size 64x64 --only BoxTextured/glTF/ --json");
+    const NodeRun run =
+        runNode(mDir / "err.txt", "versus_threejs.mjs",
+                "--data " + quoted(kShared) + " --lodopt " + quoted(LODOPT_EXECUTABLE) + " --out " +
+                    quoted(mDir / "out") + " --shading default --size 64x64 --only BoxTextured/glTF/ --json");
     ASSERT_EQ(run.exitCode, 0) << run.err;
     const nlohmann::json result = nlohmann::json::parse(run.out);
     ASSERT_EQ(result.at("rows").size(), 3u) << "three default views";
@@ -232,11 +245,11 @@ TEST_F(Harness, VersusThreeJsRendersScoresAndWritesItsTables) {
 // at 256x256, mean SSIM >= 0.95 over the views of these models. Disabled until lodopt has the
 // option; run it with --gtest_also_run_disabled_tests (docs/harness.md).
 TEST_F(Harness, DISABLED_PbrMatchesThreeJs) {
-    const NodeRun run = runNode(mDir / "err.txt", "versus_threejs.mjs",
-                                "--data " + quoted(kShared) + " --lodopt " + quoted(LODOPT_EXECUTABLE) + " --out " +
-                                    quoted(mDir / "out") +
-                                    " --shading pbr --size 256x256 --only BoxTextured/glTF/,MetalRoughSpheresNoTextures/glTF/,"
-                                    "OrientationTest/glTF/,TextureCoordinateTest/glTF/ --json");
+    const NodeRun run = runNode(
+        mDir / "err.txt", "versus_threejs.mjs",
+        "--data " + quoted(kShared) + " --lodopt " + quoted(LODOPT_EXECUTABLE) + " --out " + quoted(mDir / "out") +
+            " --shading pbr --size 256x256 --only BoxTextured/glTF/,MetalRoughSpheresNoTextures/glTF/,"
+            "OrientationTest/glTF/,TextureCoordinateTest/glTF/ --json");
     ASSERT_TRUE(run.exitCode == 0 || run.exitCode == 1) << run.err;
     const nlohmann::json result = nlohmann::json::parse(run.out);
     for (const auto& row : result.at("rows")) {
@@ -257,8 +270,8 @@ TEST(HarnessLighting, DISABLED_PbrWhiteSurfaceFacingTheKeyLightIsThreeJsByte) {
     const fs::path dir = fs::temp_directory_path() / ("lodopt-harness-" + std::to_string(::getpid()) + "-white");
     fs::create_directories(dir);
     const fs::path image = dir / "white.png";
-    const auto render = cli_test::runLodopt("render --scene " + quoted(kWhiteSurface) + " --view 0 --size 16x16 --shading pbr --out " +
-                                            quoted(image));
+    const auto render = cli_test::runLodopt("render --scene " + quoted(kWhiteSurface) +
+                                            " --view 0 --size 16x16 --shading pbr --out " + quoted(image));
     ASSERT_EQ(render.exitCode, 0);
     const renderer::LoadedImage png = renderer::readImage(image.string());
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(pixelAt(png, 8, 8)[k], kWhiteSurfaceByte, 1);
