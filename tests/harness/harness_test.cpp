@@ -241,10 +241,9 @@ TEST_F(Harness, VersusThreeJsRendersScoresAndWritesItsTables) {
     for (const char* table : {"versus.csv", "versus.md", "versus.json"}) EXPECT_TRUE(fs::exists(mDir / "out" / table));
 }
 
-// The goal, for when lodopt renders glTF PBR (`--shading pbr`): lodopt against three.js
-// at 256x256, mean SSIM >= 0.95 over the views of these models. Disabled until lodopt has the
-// option; run it with --gtest_also_run_disabled_tests (docs/harness.md).
-TEST_F(Harness, DISABLED_PbrMatchesThreeJs) {
+// lodopt's glTF PBR (`--shading pbr`) against three.js at 256x256: mean SSIM >= 0.95 over the
+// views of these models, >= 0.90 per model (docs/harness.md has the full table).
+TEST_F(Harness, PbrMatchesThreeJs) {
     const NodeRun run = runNode(
         mDir / "err.txt", "versus_threejs.mjs",
         "--data " + quoted(kShared) + " --lodopt " + quoted(LODOPT_EXECUTABLE) + " --out " + quoted(mDir / "out") +
@@ -264,9 +263,8 @@ TEST_F(Harness, DISABLED_PbrMatchesThreeJs) {
 
 // lodopt's side of the lighting number: its PBR render of the white surface facing the key light
 // is the byte three.js writes (242; the glTF Appendix B BRDF gives 0.9495 after tone mapping and
-// sRGB, also 242), within one step. Needs no node or Chromium, only `--shading pbr`: disabled
-// until lodopt has it.
-TEST(HarnessLighting, DISABLED_PbrWhiteSurfaceFacingTheKeyLightIsThreeJsByte) {
+// sRGB, also 242), within one step. Needs no node or Chromium.
+TEST(HarnessLighting, PbrWhiteSurfaceFacingTheKeyLightIsThreeJsByte) {
     const fs::path dir = fs::temp_directory_path() / ("lodopt-harness-" + std::to_string(::getpid()) + "-white");
     fs::create_directories(dir);
     const fs::path image = dir / "white.png";
