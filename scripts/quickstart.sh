@@ -22,6 +22,13 @@ missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
 done
+# The test harnesses (tests/harness, docs/harness.md; `test` only): Node with npm, Chromium for the
+# three.js reference renders, and their npm packages (pinned by package-lock.json). A node already
+# on the PATH is kept with its own npm: Debian's npm would pull in Debian's nodejs over it.
+if [ "$mode" = test ]; then
+  command -v node >/dev/null || missing+=(nodejs npm)
+  command -v chromium >/dev/null || missing+=(chromium)
+fi
 if [ ${#missing[@]} -gt 0 ]; then
   echo "quickstart: installing ${missing[*]}"
   sudo=""
@@ -29,25 +36,13 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
-
-# The test harnesses (tests/harness, docs/harness.md): Node with npm, Chromium for the three.js
-# reference renders, and their npm packages (pinned by package-lock.json). A node already on the
-# PATH is kept with its own npm: Debian's npm would pull in Debian's nodejs over it.
-harness_missing=()
-command -v node >/dev/null || harness_missing+=(nodejs npm)
-command -v chromium >/dev/null || harness_missing+=(chromium)
-if [ ${#harness_missing[@]} -gt 0 ]; then
-  echo "quickstart: installing ${harness_missing[*]}"
-  sudo=""
-  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${harness_missing[@]}" >/dev/null
-fi
-command -v npm >/dev/null || { echo "quickstart: node is installed without npm; install npm for it" >&2; exit 1; }
-if [ ! -d tests/harness/node_modules ] || [ tests/harness/package-lock.json -nt tests/harness/node_modules ]; then
-  echo "quickstart: npm ci --prefix tests/harness"
-  npm ci --prefix tests/harness --no-audit --no-fund >/dev/null
-  touch tests/harness/node_modules
+if [ "$mode" = test ]; then
+  command -v npm >/dev/null || { echo "quickstart: node is installed without npm; install npm for it" >&2; exit 1; }
+  if [ ! -d tests/harness/node_modules ] || [ tests/harness/package-lock.json -nt tests/harness/node_modules ]; then
+    echo "quickstart: npm ci --prefix tests/harness"
+    npm ci --prefix tests/harness --no-audit --no-fund >/dev/null
+    touch tests/harness/node_modules
+  fi
 fi
 
 # ccache (CMakeLists.txt uses it when found): paths relative to the checkout, so a fresh clone in
