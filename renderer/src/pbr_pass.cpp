@@ -118,7 +118,7 @@ void PbrPass::draw(const scenes::Combination& combination, const scenes::Camera&
     glUniform3fv(mUniforms.keyIrradiance, 1, glm::value_ptr(keyIrradiance));
     glUniform3fv(mUniforms.skyIrradiance, 1, glm::value_ptr(mSettings.skyIrradiance));
     glUniform3fv(mUniforms.groundIrradiance, 1, glm::value_ptr(mSettings.groundIrradiance));
-    std::vector<std::pair<float, std::size_t>> blended;  // (distance, object)
+    mBlended.clear();
     for (std::size_t o = 0; o < combination.size(); ++o) {
         const int level = combination[o];
         if (level == scenes::kNotDrawn) continue;
