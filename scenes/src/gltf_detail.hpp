@@ -47,7 +47,7 @@ bool isUnderstoodExtension(const std::string& name);
 // tinygltf decodes; a relative uri with '+' keeps its '+' (tinygltf's percent-decoding turns it
 // into a space). Returns the input unchanged when none occurs. `fallbackBuffers` receives the
 // indices of the fallback buffers.
-std::vector<unsigned char> rewriteForTinygltf(std::vector<unsigned char> bytes, bool binary, const std::string& file,
+std::vector<unsigned char> rewriteForTinygltf(std::vector<unsigned char> bytes, bool binary,
                                               std::vector<int>& fallbackBuffers);
 
 // The refusal of docs/gltf.md: a required extension lodopt neither decodes nor can draw

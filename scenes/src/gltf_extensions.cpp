@@ -135,9 +135,8 @@ std::uint64_t requiredExtensionInteger(const tinygltf::Value& object, const char
     return extensionInteger(object, key, 0, max, file, where);
 }
 
-std::vector<unsigned char> rewriteForTinygltf(std::vector<unsigned char> bytes, bool binary, const std::string& file,
+std::vector<unsigned char> rewriteForTinygltf(std::vector<unsigned char> bytes, bool binary,
                                               std::vector<int>& fallbackBuffers) {
-    (void)file;
     std::size_t jsonBegin = 0, jsonLength = bytes.size();
     if (binary) {  // checkGlbContainer() has run: the JSON chunk lies inside the file
         if (bytes.size() < 20) return bytes;

@@ -216,7 +216,7 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
     }
 
     std::vector<int> fallbackBuffers;
-    bytes = rewriteForTinygltf(std::move(bytes), binary, path, fallbackBuffers);
+    bytes = rewriteForTinygltf(std::move(bytes), binary, fallbackBuffers);
 
     tinygltf::TinyGLTF parser;
     DeferredImages deferred;
