@@ -358,15 +358,17 @@ TEST(GltfCompressed, OptionalVisualExtensionsWarnOnceByName) {
                              {{"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.5}}}}}}};
     // Implemented (or drawn by the renderer) and non-visual extensions do not warn.
     file.doc["extensionsUsed"] = {"KHR_materials_clearcoat", "KHR_texture_transform", "KHR_materials_emissive_strength",
-                                  "KHR_xmp_json_ld", "KHR_materials_clearcoat", "KHR_lights_punctual"};
+                                  "KHR_xmp_json_ld", "KHR_materials_clearcoat", "KHR_lights_punctual",
+                                  "KHR_texture_basisu"};
     std::vector<std::string> warnings;
     const Scene scene = loadGltf(file.write(dir, "coat"), plain(&warnings));
     EXPECT_EQ(scene.objects.size(), 1u);
-    ASSERT_EQ(warnings.size(), 2u) << ::testing::PrintToString(warnings);
+    ASSERT_EQ(warnings.size(), 3u) << ::testing::PrintToString(warnings);
     EXPECT_NE(warnings[0].find("coat.gltf: extensionsUsed: KHR_materials_clearcoat is not implemented"),
               std::string::npos)
         << warnings[0];
     EXPECT_NE(warnings[1].find("KHR_lights_punctual"), std::string::npos) << warnings[1];
+    EXPECT_NE(warnings[2].find("KHR_texture_basisu"), std::string::npos) << warnings[2];  // a fallback source is drawn
 }
 
 TEST(GltfCompressed, HostileDracoPrimitivesAreRefusedByElement) {
