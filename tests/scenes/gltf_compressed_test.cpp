@@ -7,6 +7,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include <glm/gtc/type_ptr.hpp>
+
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <gtest/gtest.h>
 #include <meshoptimizer.h>
 #include <webp/encode.h>
@@ -369,6 +373,77 @@ TEST(GltfCompressed, OptionalVisualExtensionsWarnOnceByName) {
         << warnings[0];
     EXPECT_NE(warnings[1].find("KHR_lights_punctual"), std::string::npos) << warnings[1];
     EXPECT_NE(warnings[2].find("KHR_texture_basisu"), std::string::npos) << warnings[2];  // a fallback source is drawn
+}
+
+// Two triangles as a Draco mesh with positions, normals (+Z) and 8-bit normalized colors,
+// without quantization (so the values come back exactly). The glTF primitive maps the
+// attributes by their Draco unique ids, in another order than they were added:
+//   3 ---- 2     triangle 0: 0 1 2, red
+//   |  /   |     triangle 1: 0 2 3, green
+//   0 ---- 1
+TEST(GltfCompressed, DracoAttributesFollowTheExtensionsIds) {
+    const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    const float up[3] = {0, 0, 1};
+    const std::uint8_t colors[2][4] = {{255, 0, 0, 255}, {0, 255, 0, 255}};
+    const int faces[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    draco::TriangleSoupMeshBuilder builder;
+    builder.Start(2);
+    const int color = builder.AddAttribute(draco::GeometryAttribute::COLOR, 4, draco::DT_UINT8, true);
+    const int position = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+    const int normal = builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
+    for (int f = 0; f < 2; ++f) {
+        const draco::FaceIndex face(f);
+        builder.SetAttributeValuesForFace(position, face, corners[faces[f][0]], corners[faces[f][1]], corners[faces[f][2]]);
+        builder.SetAttributeValuesForFace(normal, face, up, up, up);
+        builder.SetAttributeValuesForFace(color, face, colors[f], colors[f], colors[f]);
+    }
+    const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+    ASSERT_TRUE(mesh);
+    draco::Encoder encoder;
+    draco::EncoderBuffer encoded;
+    ASSERT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &encoded).ok());
+
+    TempDir dir;
+    GltfFile file;
+    const int view = file.addView(encoded.data(), encoded.size());
+    file.doc["accessors"] = {{{"componentType", kFloat}, {"count", 1}, {"type", "VEC3"}},
+                             {{"componentType", kFloat}, {"count", 1}, {"type", "VEC3"}},
+                             {{"componentType", kUnsignedByte}, {"normalized", true}, {"count", 1}, {"type", "VEC4"}},
+                             {{"componentType", kUnsignedShort}, {"count", 6}, {"type", "SCALAR"}}};
+    const json ids = {{"POSITION", mesh->attribute(position)->unique_id()},
+                      {"NORMAL", mesh->attribute(normal)->unique_id()},
+                      {"COLOR_0", mesh->attribute(color)->unique_id()}};
+    file.addMesh({{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"COLOR_0", 2}}},
+                  {"indices", 3},
+                  {"extensions", {{"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", ids}}}}}});
+    file.addNode({{"mesh", 0}}, true);
+    file.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+    file.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+    const Scene scene = loadGltf(file.write(dir, "draco"), plain());
+    ASSERT_EQ(scene.objects.size(), 1u);
+    const Mesh& decoded = scene.objects[0].levels[0].meshes.at(0);
+    ASSERT_EQ(decoded.indices.size(), 6u);
+    // Draco may reorder points and faces: compare each decoded triangle's corners with one of
+    // the two drawn above (the same corners in the same winding, from any start).
+    std::vector<std::vector<glm::vec3>> expected;
+    for (const auto& face : faces) expected.push_back({glm::make_vec3(corners[face[0]]), glm::make_vec3(corners[face[1]]),
+                                                       glm::make_vec3(corners[face[2]])});
+    int matched = 0;
+    for (int t = 0; t < 2; ++t) {
+        std::vector<glm::vec3> triangle;
+        for (int c = 0; c < 3; ++c) {
+            const std::uint32_t index = decoded.indices[3 * t + c];
+            triangle.push_back(decoded.positions.at(index));
+            EXPECT_EQ(decoded.normals.at(index), glm::vec3(0, 0, 1));
+        }
+        for (const auto& candidate : expected) {
+            for (int start = 0; start < 3; ++start) {
+                matched += triangle[0] == candidate[start] && triangle[1] == candidate[(start + 1) % 3] &&
+                           triangle[2] == candidate[(start + 2) % 3];
+            }
+        }
+    }
+    EXPECT_EQ(matched, 2);
 }
 
 TEST(GltfCompressed, HostileDracoPrimitivesAreRefusedByElement) {
