@@ -56,6 +56,17 @@ if(NOT meshoptimizer_FOUND)
   lodopt_missing(libmeshoptimizer-dev "meshoptimizer")
 endif()
 
+# Compressed glTF (scenes/src/gltf_draco.cpp, KHR_draco_mesh_compression; gltf_materials_views.cpp,
+# EXT_texture_webp).
+find_package(draco QUIET CONFIG)
+if(NOT draco_FOUND)
+  lodopt_missing(libdraco-dev "Draco")
+endif()
+pkg_check_modules(WEBP QUIET IMPORTED_TARGET libwebp)
+if(NOT WEBP_FOUND)
+  lodopt_missing(libwebp-dev "libwebp")
+endif()
+
 find_package(CLI11 QUIET CONFIG)
 if(NOT CLI11_FOUND)
   lodopt_missing(libcli11-dev "CLI11")

@@ -29,6 +29,7 @@ function(lodopt_test module)
   target_link_libraries(${module}_tests PRIVATE ${ARGN} GTest::gtest_main GTest::gmock)
   target_compile_definitions(${module}_tests PRIVATE
     LODOPT_SHARED_DATA_DIR="${LODOPT_SHARED_DATA_DIR}"
+    LODOPT_HARNESS_DIR="${PROJECT_SOURCE_DIR}/tests/harness"
     LODOPT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     LODOPT_BINARY_DIR="${PROJECT_BINARY_DIR}")
   gtest_discover_tests(${module}_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)

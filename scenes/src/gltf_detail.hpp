@@ -27,9 +27,65 @@ struct ModelGraph {
     std::vector<std::vector<int>> materialLods;  // per material, empty when it has no MSFT_lod
 };
 
-// Required extensions the loader implements or can safely approximate; any other one
-// changes the meaning of the data (e.g. Draco-compressed accessors would read as zeros).
+// Extensions the loader decodes, implements or can safely approximate (accepted when
+// required, no warning when used); any other required one changes the meaning of the data
+// (e.g. KHR_texture_basisu images lodopt cannot decode).
 bool isUnderstoodExtension(const std::string& name);
+
+// --- Extensions (gltf_extensions.cpp, gltf_meshopt.cpp, gltf_draco.cpp) --------------------
+// Each runs on the parsed model before validateModel(), so that everything after sees plain
+// glTF 2.0: decoded bufferViews and accessors in new buffers, textures pointing at the image
+// the loader decodes. They check every index and range they read themselves.
+
+// Rewrites the JSON (of a .gltf, or the JSON chunk of a .glb, returned as a whole file) where
+// tinygltf 2.7 would misread it: an EXT_meshopt_compression fallback buffer without uri
+// becomes a 4-byte data uri (tinygltf would otherwise fail on the missing uri, or copy
+// unrelated bytes of the BIN chunk); a KHR_draco_mesh_compression primitive loses its
+// `indices` (an accessor without bufferView, which tinygltf refuses; the Draco pre-pass writes
+// new ones); a buffer's percent-encoded data uri (application/gltf-buffer or octet-stream
+// without ;base64) and an image's data:image/webp uri become base64 octet-stream, which
+// tinygltf decodes; a relative uri with '+' keeps its '+' (tinygltf's percent-decoding turns it
+// into a space). Returns the input unchanged when none occurs. `fallbackBuffers` receives the
+// indices of the fallback buffers.
+std::vector<unsigned char> rewriteForTinygltf(std::vector<unsigned char> bytes, bool binary,
+                                              std::vector<int>& fallbackBuffers);
+
+// The refusal of docs/gltf.md: a required extension lodopt neither decodes nor can draw
+// faithfully without, named ("extensionsRequired: KHR_texture_basisu is not supported").
+void checkRequiredExtensions(const tinygltf::Model& model, const std::string& file);
+
+// One warning per used-but-not-required extension that changes how the model looks and that
+// lodopt does not implement (docs/gltf.md lists them), "<file>: extensionsUsed: <name> ...".
+void warnUnimplementedExtensions(const tinygltf::Model& model, const std::string& file,
+                                 std::vector<std::string>* warnings);
+
+// The image a texture shows: EXT_texture_webp's source when present, else `source`; -1 for
+// none. Throws SceneError for an extension source that is not an image index.
+int textureImageSource(const tinygltf::Model& model, int texture, const std::string& file);
+
+// Points each texture's `source` at textureImageSource(), so that code reading `source`
+// decodes the WebP image.
+void resolveTextureSources(tinygltf::Model& model, const std::string& file);
+
+// EXT_meshopt_compression: decodes every compressed bufferView (ATTRIBUTES with the NONE,
+// OCTAHEDRAL, QUATERNION or EXPONENTIAL filter, TRIANGLES, INDICES) into one new buffer and
+// points the view at it. `fallbackBuffers`: buffers without data (rewriteForTinygltf). Every
+// decoded byte is taken from `byteBudget`, which may not go below 0.
+void decodeMeshoptViews(tinygltf::Model& model, const std::string& file, const std::vector<int>& fallbackBuffers,
+                        std::uint64_t& byteBudget);
+
+// KHR_draco_mesh_compression: decodes each compressed triangle primitive into new accessors
+// (the extension's attributes, in the types their accessors declare, and 32-bit indices) in
+// one new buffer, and points the primitive at them. Decoded bytes come from `byteBudget`.
+void decodeDracoPrimitives(tinygltf::Model& model, const std::string& file, std::uint64_t& byteBudget);
+
+// Reads an optional non-negative integer property of an extension object: `fallback` when
+// absent, SceneError naming `where`.<key> when not an integer in 0..`max`.
+std::uint64_t extensionInteger(const tinygltf::Value& object, const char* key, std::uint64_t fallback,
+                               std::uint64_t max, const std::string& file, const std::string& where);
+// Same, required.
+std::uint64_t requiredExtensionInteger(const tinygltf::Value& object, const char* key, std::uint64_t max,
+                                       const std::string& file, const std::string& where);
 
 // Runs every reference, range and cycle check of docs/gltf.md on a model tinygltf parsed, so
 // that the conversion can index without checking. `decodedBytesAllowance`: most bytes an

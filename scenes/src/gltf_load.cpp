@@ -215,6 +215,9 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
         checkJsonDepth(bytes.data(), bytes.size(), path);
     }
 
+    std::vector<int> fallbackBuffers;
+    bytes = rewriteForTinygltf(std::move(bytes), binary, fallbackBuffers);
+
     tinygltf::TinyGLTF parser;
     DeferredImages deferred;
     parser.SetImageLoader(&keepEncodedImage, &deferred);
@@ -252,6 +255,15 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
         throw SceneError(path + ": buffers and images hold " + std::to_string(bufferBytes) + " bytes, over the limit of " +
                          std::to_string(options.maxBytes));
     }
+    // Extensions first: refuse what cannot be drawn before decoding anything, then decode
+    // compressed views and primitives within what the byte limit leaves.
+    checkRequiredExtensions(model, path);
+    warnUnimplementedExtensions(model, path, options.warnings);
+    resolveTextureSources(model, path);
+    std::uint64_t byteBudget = options.maxBytes - bufferBytes;
+    decodeMeshoptViews(model, path, fallbackBuffers, byteBudget);
+    decodeDracoPrimitives(model, path, byteBudget);
+    bufferBytes = options.maxBytes - byteBudget;
     const ModelGraph graph = validateModel(model, path, bufferBytes + (std::uint64_t(1) << 20));
     SceneBuilder builder(model, graph, path, options, std::move(deferred.encoded));
     return builder.build();

@@ -9,6 +9,7 @@
 #include <set>
 
 #include <nlohmann/json.hpp>
+#include <webp/decode.h>
 
 #include "gltf_scene_builder.hpp"
 
@@ -133,6 +134,19 @@ bool jpegSize(const std::vector<unsigned char>& bytes, std::uint64_t& width, std
     return false;
 }
 
+// Width and height from a WebP's RIFF header (VP8, VP8L or VP8X chunk, libwebp's
+// WebPGetInfo reads no pixels). False when the bytes are not a WebP file.
+bool webpSize(const std::vector<unsigned char>& bytes, std::uint64_t& width, std::uint64_t& height) {
+    if (bytes.size() < 12 || std::memcmp(bytes.data(), "RIFF", 4) != 0 || std::memcmp(bytes.data() + 8, "WEBP", 4) != 0) {
+        return false;
+    }
+    int w = 0, h = 0;
+    if (!WebPGetInfo(bytes.data(), bytes.size(), &w, &h) || w <= 0 || h <= 0) return false;
+    width = static_cast<std::uint64_t>(w);
+    height = static_cast<std::uint64_t>(h);
+    return true;
+}
+
 glm::vec3 jsonVec3(const nlohmann::json& value, const std::string& file, const std::string& where) {
     if (!value.is_array() || value.size() != 3) fail(file, where, "expected an array of 3 numbers");
     glm::vec3 v;
@@ -172,16 +186,33 @@ Texture SceneBuilder::decodeImage(int imageIndex) {
         fail(mFile, where, reason);
     }
     const std::vector<unsigned char>& bytes = mEncodedImages[imageIndex];
-    // glTF 2.0 images are PNG or JPEG; stb_image would also decode BMP, PSD, TGA, ... whose
-    // headers are not checked here. The decoded size is checked before any decoder allocates.
+    // glTF 2.0 images are PNG or JPEG, and WebP with EXT_texture_webp; stb_image would also
+    // decode BMP, PSD, TGA, ... whose headers are not checked here. The decoded size is checked
+    // before any decoder allocates.
     std::uint64_t width = 0, height = 0, bytesPerPixel = 4;
+    bool webp = false;
     if (pngSize(bytes, width, height)) {
         if (bytes.size() > 24 && bytes[24] == 16) bytesPerPixel = 8;
     } else if (!jpegSize(bytes, width, height)) {
-        fail(mFile, where, "cannot be decoded as PNG or JPEG (no PNG header or JPEG frame header)");
+        webp = webpSize(bytes, width, height);
+        if (!webp) {
+            fail(mFile, where, "cannot be decoded as PNG, JPEG or WebP (no PNG header, JPEG frame header or WebP header)");
+        }
     }
     if (width * height * bytesPerPixel > mOptions.maxBytes) {
         fail(mFile, where, std::to_string(width) + "x" + std::to_string(height) + " pixels is over the byte limit");
+    }
+    if (webp) {
+        int decodedWidth = 0, decodedHeight = 0;
+        std::uint8_t* pixels = WebPDecodeRGBA(bytes.data(), bytes.size(), &decodedWidth, &decodedHeight);
+        if (!pixels) fail(mFile, where, "cannot be decoded as WebP (corrupt or truncated data)");
+        texture.width = decodedWidth;
+        texture.height = decodedHeight;
+        texture.rgba.assign(pixels, pixels + std::size_t(decodedWidth) * std::size_t(decodedHeight) * 4);
+        WebPFree(pixels);
+        mEncodedImages[imageIndex].clear();
+        mEncodedImages[imageIndex].shrink_to_fit();
+        return texture;
     }
     tinygltf::Image decoded;
     std::string error, warning;

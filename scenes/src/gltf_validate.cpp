@@ -459,8 +459,13 @@ int accessorComponentCount(const tinygltf::Accessor& accessor) {
 }
 
 bool isUnderstoodExtension(const std::string& name) {
-    static const std::set<std::string> kUnderstood = {"KHR_mesh_quantization", "KHR_materials_unlit", "MSFT_lod",
-                                                      "KHR_materials_pbrSpecularGlossiness"};
+    // Decoded before validation (gltf_meshopt.cpp, gltf_draco.cpp, WebP in
+    // gltf_materials_views.cpp), read by the loader, or drawn by the renderer; the
+    // specular-glossiness model is approximated by its diffuse color.
+    static const std::set<std::string> kUnderstood = {
+        "KHR_mesh_quantization", "KHR_materials_unlit",        "MSFT_lod",
+        "KHR_materials_pbrSpecularGlossiness", "EXT_meshopt_compression", "KHR_draco_mesh_compression",
+        "EXT_texture_webp",      "KHR_texture_transform",      "KHR_materials_emissive_strength"};
     return kUnderstood.count(name) != 0;
 }
 

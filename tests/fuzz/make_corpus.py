@@ -147,6 +147,53 @@ def ppm(width, height, seed):
     return b"P6\n%d %d\n255\n" % (width, height) + pixels
 
 
+# Compressed streams for the extension seeds, made once with the decoders' own libraries
+# (meshoptimizer 0.18 encoders, libwebp's lossless encoder, glTF-Transform 3.10.1's Draco):
+# a unit quad's positions, its +Z normals through the OCTAHEDRAL filter (8 bit), its two
+# triangles; a 2x2 RGBA image; the quad as a Draco mesh (POSITION is attribute 0).
+MESHOPT_POSITIONS = bytes.fromhex(
+    "a000000133000000ffff01330000007e7d0000010c000000ff010c0000007e00000000000000000000000000000000000000000000"
+    "0000000000000000000000000000")
+MESHOPT_OCT_NORMALS = bytes.fromhex("a0000000000000000000000000000000000000000000000000000000000000000000007f00")
+MESHOPT_TRIANGLES = bytes.fromhex("e0f000007687566778a9866589689801690000")
+WEBP_2X2 = bytes.fromhex("5249464630000000574542505650384c230000002f014000101f201048de1f3a8df9171014fc1f9d80a0e8bae522660fc20d"
+                         "1822fa1f0200")
+DRACO_QUAD = bytes.fromhex("445241434f02020101000000040200020000011fff011101ff0000010009030000020101010003030130011003002882"
+                           "980000000000ff3f00000000000000000000000000000000803f0e")
+
+
+def meshopt_quad():
+    """The quad with meshopt-compressed views in buffer 1, a fallback buffer without data."""
+    g = Gltf()
+    fallback = 0
+    for data, count, stride, mode, extra in [(MESHOPT_POSITIONS, 4, 12, "ATTRIBUTES", {}),
+                                             (MESHOPT_OCT_NORMALS, 4, 4, "ATTRIBUTES", {"filter": "OCTAHEDRAL"}),
+                                             (MESHOPT_TRIANGLES, 6, 2, "TRIANGLES", {})]:
+        view = g.view(data)
+        meshopt = {"buffer": 0, "byteOffset": g.doc["bufferViews"][view]["byteOffset"], "byteLength": len(data),
+                   "byteStride": stride, "count": count, "mode": mode}
+        meshopt.update(extra)
+        g.doc["bufferViews"][view] = {"buffer": 1, "byteOffset": fallback, "byteLength": count * stride,
+                                      "extensions": {"EXT_meshopt_compression": meshopt}}
+        if mode == "ATTRIBUTES":
+            g.doc["bufferViews"][view]["byteStride"] = stride
+        fallback += (count * stride + 3) // 4 * 4
+    position = g.accessor(0, FLOAT, 4, "VEC3", min=[0, 0, 0], max=[1, 1, 0])
+    normal = g.accessor(1, 5120, 4, "VEC3", normalized=True)
+    indices = g.accessor(2, USHORT, 6, "SCALAR")
+    g.node({"name": "quad", "mesh": g.mesh({"attributes": {"POSITION": position, "NORMAL": normal},
+                                            "indices": indices})})
+    g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["EXT_meshopt_compression"]
+    data = g.padded_bin()
+    doc = json.loads(json.dumps(g.doc))
+    doc["buffers"] = [{"byteLength": len(data)},
+                      {"byteLength": fallback, "extensions": {"EXT_meshopt_compression": {"fallback": True}}}]
+    text = json.dumps(doc, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    body = struct.pack("<II", len(text), 0x4E4F534A) + text + struct.pack("<II", len(data), 0x004E4942) + data
+    return struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body
+
+
 def gltf_corpus():
     files = {}
     # 1. One indexed quad, as .gltf (data URI) and .glb.
@@ -241,6 +288,27 @@ def gltf_corpus():
     g.node({"name": "grid", "mesh": g.mesh({"attributes": {"POSITION": g.floats(positions, "VEC3", 3)},
                                            "indices": g.indices(idx, USHORT)})})
     files["grid.glb"] = g.glb()
+
+    # 9. Extensions: meshopt with a fallback buffer, Draco, a WebP base color.
+    files["meshopt.glb"] = meshopt_quad()
+    g = Gltf()
+    view = g.view(DRACO_QUAD)
+    position = g.accessor(None, FLOAT, 4, "VEC3", min=[0, 0, 0], max=[1, 1, 0])
+    indices = g.accessor(None, UINT, 6, "SCALAR")
+    g.node({"name": "quad", "mesh": g.mesh({"attributes": {"POSITION": position}, "indices": indices, "extensions": {
+        "KHR_draco_mesh_compression": {"bufferView": view, "attributes": {"POSITION": 0}}}})})
+    g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["KHR_draco_mesh_compression"]
+    files["draco.glb"] = g.glb()
+    g = Gltf()
+    g.doc["images"] = [{"bufferView": g.view(WEBP_2X2), "mimeType": "image/webp"}]
+    g.doc["textures"] = [{"extensions": {"EXT_texture_webp": {"source": 0}}}]
+    g.doc["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    g.doc["extensionsUsed"] = g.doc["extensionsRequired"] = ["EXT_texture_webp"]
+    position = g.floats([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0], "VEC3", 3)
+    uv = g.floats([0, 1, 1, 1, 1, 0, 0, 0], "VEC2", 2)
+    g.node({"name": "quad", "mesh": g.mesh({"attributes": {"POSITION": position, "TEXCOORD_0": uv},
+                                            "indices": g.indices([0, 1, 2, 0, 2, 3]), "material": 0})})
+    files["webp.glb"] = g.glb()
 
     # Invalid seeds: the fuzzer starts next to each refusal.
     g = Gltf()

@@ -21,6 +21,11 @@
 //    .lodopt_camera_paths becomes Scene::paths. Skins, animations, morph targets, lights
 //    and material properties other than the base color are ignored.
 //
+// Extensions: EXT_meshopt_compression, KHR_draco_mesh_compression and EXT_texture_webp are
+// decoded; any other required extension the loader cannot honour (KHR_texture_basisu, ...) is
+// refused by name; an optional one that changes the look and is not implemented gets one
+// warning (docs/gltf.md, "Extensions").
+//
 // Every reference, range and cycle is checked after tinygltf parses the file: bad data
 // throws SceneError naming the file and the element (e.g. "meshes[3].primitives[0].indices").
 
@@ -37,13 +42,15 @@ namespace lodopt::scenes {
 struct GltfLoadOptions {
     // Add a meshoptimizer LOD chain (lod_generation.hpp defaults) to objects with one level.
     bool generateLods = true;
-    // Refuse files whose declared buffers or images exceed this many bytes.
+    // Refuse files whose buffers and images, with the bytes their compressed views and
+    // primitives decode to, exceed this many bytes.
     std::uint64_t maxBytes = std::uint64_t(1) << 31;
     // POINTS / LINES primitives: false → SceneError naming meshes[i].primitives[j].mode;
     // true → the primitive is skipped with a warning.
     bool skipNonTrianglePrimitives = false;
     // When not null, receives one line per thing ignored or approximated (skipped
-    // primitives, orthographic cameras, material LODs under node LODs, ...).
+    // primitives, orthographic cameras, material LODs under node LODs, unimplemented
+    // optional extensions, ...).
     std::vector<std::string>* warnings = nullptr;
 };
 
