@@ -78,7 +78,7 @@ struct Renderer::Impl {
     std::unique_ptr<Platform> platform;
     GLuint program = 0, framebuffer = 0, colorBuffer = 0, depthBuffer = 0;
     GLint uModelViewProjection = -1, uNormalMatrix = -1, uBaseColor = -1, uHasTexture = -1, uToLight = -1,
-          uAmbient = -1, uTexture = -1;
+          uAmbient = -1, uTexture = -1, uTransformUv = -1, uUvTransform = -1;
     std::unique_ptr<PbrPass> pbrPass;  // Shading::Pbr only
     std::vector<GLuint> textures;      // Lambert: per scene texture, read as stored
     gl::GpuMeshes meshes;
@@ -105,6 +105,8 @@ struct Renderer::Impl {
         uToLight = glGetUniformLocation(program, "uToLight");
         uAmbient = glGetUniformLocation(program, "uAmbient");
         uTexture = glGetUniformLocation(program, "uBaseColorTexture");
+        uTransformUv = glGetUniformLocation(program, "uTransformUv");
+        uUvTransform = glGetUniformLocation(program, "uUvTransform");
     }
 
     void createFramebuffer() {
@@ -245,10 +247,18 @@ struct Renderer::Impl {
             for (const gl::GpuMesh& mesh : meshes[o][level]) {
                 glm::vec4 color(1.0f);
                 int texture = -1;
+                bool transformUv = false;
                 if (mesh.material >= 0) {
-                    color = scene.materials[mesh.material].baseColorFactor;
-                    texture = scene.materials[mesh.material].baseColorTexture.texture;
+                    const scenes::Material& material = scene.materials[std::size_t(mesh.material)];
+                    color = material.baseColorFactor;
+                    texture = material.baseColorTexture.texture;
+                    transformUv = texture >= 0 && !material.baseColorTexture.transform.isIdentity();
+                    if (transformUv) {
+                        const glm::mat3 uvTransform = material.baseColorTexture.transform.matrix();
+                        glUniformMatrix3fv(uUvTransform, 1, GL_FALSE, glm::value_ptr(uvTransform));
+                    }
                 }
+                glUniform1i(uTransformUv, transformUv ? 1 : 0);
                 glUniform4fv(uBaseColor, 1, glm::value_ptr(color));
                 glUniform1i(uHasTexture, texture >= 0 ? 1 : 0);
                 glBindTexture(GL_TEXTURE_2D, texture >= 0 ? textures[texture] : 0);

@@ -1,21 +1,25 @@
-// The renderer's GLSL. The Lambert program is the papers' shading and must not change: every
-// figure measured with `--shading lambert` depends on its exact bytes.
+// The renderer's GLSL. The Lambert program is the papers' shading and must not change what it
+// draws: every figure measured with `--shading lambert` depends on its exact bytes.
 #include "shaders.hpp"
 
 namespace lodopt::renderer::shaders {
 
+// The base color's KHR_texture_transform applies only when it is not the identity, so that every
+// other texture coordinate is the attribute itself, as before the transform was read.
 const char* const kLambertVertex = R"(#version 330 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
 uniform mat4 uModelViewProjection;
 uniform mat3 uNormalMatrix;
+uniform bool uTransformUv;
+uniform mat3 uUvTransform;
 out vec3 vNormal;
 out vec2 vUv;
 void main() {
     gl_Position = uModelViewProjection * vec4(aPosition, 1.0);
     vNormal = uNormalMatrix * aNormal;
-    vUv = aUv;
+    vUv = uTransformUv ? (uUvTransform * vec3(aUv, 1.0)).xy : aUv;
 }
 )";
 

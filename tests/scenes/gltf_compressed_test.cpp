@@ -249,7 +249,7 @@ TEST(GltfCompressed, WebpTextureThroughPercentEncodedUris) {
     ASSERT_EQ(texture.height, 2);
     const std::vector<std::uint8_t> expected = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 128};
     EXPECT_EQ(texture.rgba, expected);  // lossless
-    EXPECT_EQ(scene.materials.at(0).baseColorTexture, 0);
+    EXPECT_EQ(scene.materials.at(0).baseColorTexture.texture, 0);
 }
 
 TEST(GltfCompressed, WebpDataUriAndBadWebpHeaders) {
