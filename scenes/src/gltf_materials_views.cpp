@@ -65,27 +65,15 @@ SamplerState samplerState(const tinygltf::Sampler& sampler) {
     if (sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) state.magFilter = FilterMode::Nearest;
     switch (sampler.minFilter) {
         case TINYGLTF_TEXTURE_FILTER_NEAREST:
-            state.minFilter = FilterMode::Nearest;
-            state.mipmap = MipmapMode::None;
-            break;
-        case TINYGLTF_TEXTURE_FILTER_LINEAR:
-            state.minFilter = FilterMode::Linear;
-            state.mipmap = MipmapMode::None;
-            break;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR: state.mipmap = MipmapMode::None; break;
         case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
-            state.minFilter = FilterMode::Nearest;
-            state.mipmap = MipmapMode::Nearest;
-            break;
-        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
-            state.minFilter = FilterMode::Linear;
-            state.mipmap = MipmapMode::Nearest;
-            break;
-        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
-            state.minFilter = FilterMode::Nearest;
-            state.mipmap = MipmapMode::Linear;
-            break;
-        default:
-            break;  // LINEAR_MIPMAP_LINEAR or undefined
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: state.mipmap = MipmapMode::Nearest; break;
+        default: break;  // *_MIPMAP_LINEAR or undefined
+    }
+    if (sampler.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+        sampler.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+        sampler.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR) {
+        state.minFilter = FilterMode::Nearest;
     }
     return state;
 }

@@ -181,6 +181,75 @@ TEST(GltfExport, TexturedSceneRoundTripsPixelForPixel) {
     }
 }
 
+// Every material property survives export and reload: each of the six glTF minification
+// filters and three wrap modes, texture transforms, texCoord, alpha modes, emissive strength,
+// unlit, the PBR factors and maps.
+TEST(GltfExport, EveryMaterialPropertyRoundTrips) {
+    TempDir dir;
+    Scene scene = handBuiltScene(true);
+    const std::pair<FilterMode, MipmapMode> minifications[] = {
+        {FilterMode::Nearest, MipmapMode::None},   {FilterMode::Linear, MipmapMode::None},
+        {FilterMode::Nearest, MipmapMode::Nearest}, {FilterMode::Linear, MipmapMode::Nearest},
+        {FilterMode::Nearest, MipmapMode::Linear},  {FilterMode::Linear, MipmapMode::Linear}};
+    const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::ClampToEdge, WrapMode::MirroredRepeat};
+    scene.materials.clear();
+    for (int m = 0; m < 6; ++m) {
+        Material material;
+        material.name = "m" + std::to_string(m);
+        material.baseColorFactor = {0.5f, 0.25f, 1.0f, 0.75f};
+        material.metallicFactor = 0.125f * float(m);
+        material.roughnessFactor = 1.0f - 0.125f * float(m);
+        material.alphaMode = AlphaMode(m % 3);
+        material.alphaCutoff = 0.25f;
+        material.doubleSided = m % 2 == 0;
+        material.unlit = m == 5;
+        material.baseColorTexture.texture = m % 2;
+        material.baseColorTexture.sampler.minFilter = minifications[m].first;
+        material.baseColorTexture.sampler.mipmap = minifications[m].second;
+        material.baseColorTexture.sampler.magFilter = m < 3 ? FilterMode::Nearest : FilterMode::Linear;
+        material.baseColorTexture.sampler.wrapS = wraps[m % 3];
+        material.baseColorTexture.sampler.wrapT = wraps[(m + 1) % 3];
+        material.baseColorTexture.transform = {{0.5f * float(m), -0.25f}, 0.125f * float(m), {2.0f, 0.5f}};
+        material.normalTexture = {1, 1, {}, {}};
+        material.normalScale = 0.5f;
+        material.occlusionTexture = {0, 0, {}, {}};
+        material.occlusionStrength = 0.75f;
+        material.metallicRoughnessTexture = {1, 0, {}, {}};
+        material.emissiveTexture = {0, 0, {}, {}};
+        material.emissiveFactor = {1.0f, 0.5f, 0.0f};
+        material.emissiveStrength = float(m + 1);
+        scene.materials.push_back(material);
+    }
+    exportGltf(scene, dir.file("materials.glb"));
+    const Scene loaded = loadGltf(dir.file("materials.glb"), noGeneration());
+    ASSERT_EQ(loaded.materials.size(), scene.materials.size());
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        SCOPED_TRACE(scene.materials[m].name);
+        const Material &a = scene.materials[m], &b = loaded.materials[m];
+        EXPECT_EQ(b.baseColorFactor, a.baseColorFactor);
+        EXPECT_EQ(b.metallicFactor, a.metallicFactor);
+        EXPECT_EQ(b.roughnessFactor, a.roughnessFactor);
+        EXPECT_EQ(b.alphaMode, a.alphaMode);
+        if (a.alphaMode == AlphaMode::Mask) EXPECT_EQ(b.alphaCutoff, a.alphaCutoff);
+        EXPECT_EQ(b.doubleSided, a.doubleSided);
+        EXPECT_EQ(b.unlit, a.unlit);
+        EXPECT_EQ(b.baseColorTexture.texture, a.baseColorTexture.texture);
+        EXPECT_TRUE(b.baseColorTexture.sampler == a.baseColorTexture.sampler);
+        EXPECT_EQ(b.baseColorTexture.transform.offset, a.baseColorTexture.transform.offset);
+        EXPECT_EQ(b.baseColorTexture.transform.rotation, a.baseColorTexture.transform.rotation);
+        EXPECT_EQ(b.baseColorTexture.transform.scale, a.baseColorTexture.transform.scale);
+        EXPECT_EQ(b.normalTexture.texture, 1);
+        EXPECT_EQ(b.normalTexture.texCoord, 1);
+        EXPECT_EQ(b.normalScale, a.normalScale);
+        EXPECT_EQ(b.occlusionTexture.texture, 0);
+        EXPECT_EQ(b.occlusionStrength, a.occlusionStrength);
+        EXPECT_EQ(b.metallicRoughnessTexture.texture, 1);
+        EXPECT_EQ(b.emissiveTexture.texture, 0);
+        EXPECT_EQ(b.emissiveFactor, a.emissiveFactor);
+        EXPECT_EQ(b.emissiveStrength, a.emissiveStrength);
+    }
+}
+
 TEST(GltfExport, AuthoredLevelsAreNotRegeneratedOnReload) {
     TempDir dir;
     const Scene scene = handBuiltScene(false);
