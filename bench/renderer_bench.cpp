@@ -51,7 +51,10 @@ scenes::Scene stackedQuads(int layers, bool farthestFirst, bool textured, int su
     texture.rgba.resize(256 * 256 * 4);
     for (std::size_t i = 0; i < texture.rgba.size(); ++i) texture.rgba[i] = std::uint8_t((i * 7919u) >> 3);
     scene.textures.push_back(texture);
-    scene.materials.push_back(scenes::Material{"quad", glm::vec4(1.0f), textured ? 0 : -1});
+    scenes::Material material;
+    material.name = "quad";
+    material.baseColorTexture.texture = textured ? 0 : -1;
+    scene.materials.push_back(material);
     for (int k = 0; k < layers; ++k) {
         const int depthRank = farthestFirst ? layers - 1 - k : k;  // 0 = nearest
         scenes::Object object;

@@ -224,25 +224,28 @@ std::vector<std::int32_t> pixelParts(const ViewSetup& setup, const detail::Visib
     return parts;
 }
 
-// Pixels where `a` and `b` differ: one covers and the other not, or both cover in other colors.
+// Pixels where `a` and `b` differ: one covers and the other not, or both cover in other colors
+// (opaque or blended).
 std::uint64_t differingPixels(const renderer::Layer& a, const renderer::Layer& b) {
     const renderer::PixelRect& ra = a.rect;
     const renderer::PixelRect& rb = b.rect;
-    // The covered pixel (x, y) of `layer`, its color in `color`; false when not covered.
-    auto covered = [](const renderer::Layer& layer, int x, int y, std::uint32_t& color) {
+    // The covered pixel (x, y) of `layer`, its opaque and blended colors in `color` and
+    // `blend`; false when not covered.
+    auto covered = [](const renderer::Layer& layer, int x, int y, std::uint32_t& color, std::uint32_t& blend) {
         const renderer::PixelRect& r = layer.rect;
         if (x < r.x0 || x >= r.x1 || y < r.y0 || y >= r.y1) return false;
         const std::size_t at = std::size_t(y - r.y0) * r.width() + std::size_t(x - r.x0);
         if (!(layer.depth[at] < 1.0f)) return false;
         std::memcpy(&color, &layer.rgba[at * 4], 4);
+        if (layer.blends()) std::memcpy(&blend, &layer.blendRgba[at * 4], 4);
         return true;
     };
     std::uint64_t count = 0;
     for (int y = std::min(ra.y0, rb.y0); y < std::max(ra.y1, rb.y1); ++y) {
         for (int x = std::min(ra.x0, rb.x0); x < std::max(ra.x1, rb.x1); ++x) {
-            std::uint32_t colorA = 0, colorB = 0;
-            const bool inA = covered(a, x, y, colorA), inB = covered(b, x, y, colorB);
-            count += inA != inB || (inA && colorA != colorB);
+            std::uint32_t colorA = 0, colorB = 0, blendA = 0, blendB = 0;
+            const bool inA = covered(a, x, y, colorA, blendA), inB = covered(b, x, y, colorB, blendB);
+            count += inA != inB || (inA && (colorA != colorB || blendA != blendB));
         }
     }
     return count;

@@ -24,7 +24,9 @@ namespace {
 bool sameLayer(const renderer::Layer& a, const renderer::Layer& b) {
     const bool sameRect = a.rect.x0 == b.rect.x0 && a.rect.y0 == b.rect.y0 && a.rect.x1 == b.rect.x1 &&
                           a.rect.y1 == b.rect.y1;
-    return sameRect && a.depth == b.depth && a.rgba == b.rgba;
+    return sameRect && a.depth == b.depth && a.rgba == b.rgba && a.blendRgba == b.blendRgba &&
+           a.opaqueDepth == b.opaqueDepth && a.blendDistance == b.blendDistance && a.blendFarthest == b.blendFarthest &&
+           a.stackPixels == b.stackPixels && a.stackStarts == b.stackStarts && a.stackFragments == b.stackFragments;
 }
 
 // True when the object's level-0 bounding box lies entirely outside one clip plane.
@@ -41,32 +43,11 @@ bool outsideFrustum(const scenes::Object& object, const glm::mat4& viewProjectio
     return counts.allOutsideOnePlane();
 }
 
-// A blended surface's layer holds no depth and its color depends on what is behind it, so
-// neither the skip analysis nor the compositing can stand for it: refuse rather than search a
-// scene whose blended objects would be judged invisible.
-void refuseBlendedObjects(const scenes::Scene& scene) {
-    for (const scenes::Object& object : scene.objects) {
-        for (const scenes::Level& level : object.levels) {
-            for (const scenes::Mesh& mesh : level.meshes) {
-                if (mesh.material >= 0 &&
-                    scene.materials[std::size_t(mesh.material)].alphaMode == scenes::AlphaMode::Blend) {
-                    throw scenes::SceneError(scene.name + ": object '" + object.name + "' uses material '" +
-                                             scene.materials[std::size_t(mesh.material)].name +
-                                             "' with alphaMode BLEND, which the search cannot score with "
-                                             "--shading pbr yet (render it with lodopt render, or search with "
-                                             "--shading lambert)");
-                }
-            }
-        }
-    }
-}
-
 }  // namespace
 
 ViewSetup::ViewSetup(const scenes::Scene& scene, const scenes::Camera& camera, renderer::Renderer& renderer)
     : mScene(scene), mCamera(camera), mClearColor(renderer.settings().clearColor) {
     const auto start = std::chrono::steady_clock::now();
-    if (renderer.settings().shading == renderer::Shading::Pbr) refuseBlendedObjects(scene);
     mReference = renderer.render(scenes::referenceCombination(scene), camera);
     const int width = mReference.width, height = mReference.height;
     const std::size_t pixels = std::size_t(width) * height;
@@ -78,14 +59,15 @@ ViewSetup::ViewSetup(const scenes::Scene& scene, const scenes::Camera& camera, r
         }
     }
 
-    // Level-0 depths per pixel: "the other objects' depth" at a pixel is one lookup.
+    // Level-0 depths per pixel: "the other objects' depth" at a pixel is one lookup. Blended
+    // surfaces hide nothing (they write no depth), so only opaque ones take part.
     detail::NearestTwo levelZero(pixels);
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const renderer::Layer& layer = mLayers[o][0];
+        const std::vector<float>& occluder = layer.occluderDepth();
         for (int y = layer.rect.y0; y < layer.rect.y1; ++y) {
             for (int x = layer.rect.x0; x < layer.rect.x1; ++x) {
-                const float depth =
-                    layer.depth[std::size_t(y - layer.rect.y0) * layer.rect.width() + (x - layer.rect.x0)];
+                const float depth = occluder[std::size_t(y - layer.rect.y0) * layer.rect.width() + (x - layer.rect.x0)];
                 levelZero.offer(std::size_t(y) * width + x, depth, int(o));
             }
         }

@@ -30,7 +30,7 @@ VisibilityBounds::VisibilityBounds(const ViewSetup& setup)
             const renderer::Layer& layer = setup.layer(int(o), level);
             const renderer::PixelRect& r = layer.rect;
             for (int y = std::max(r.y0, unionRect.y0); y < std::min(r.y1, unionRect.y1); ++y) {
-                const float* depth = layer.depth.data() + std::size_t(y - r.y0) * r.width();
+                const float* depth = layer.occluderDepth().data() + std::size_t(y - r.y0) * r.width();
                 const std::size_t row = std::size_t(y - unionRect.y0) * unionWidth;
                 for (int x = std::max(r.x0, unionRect.x0); x < std::min(r.x1, unionRect.x1); ++x) {
                     const float d = depth[x - r.x0];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 #include <glm/gtc/type_ptr.hpp>
 
 namespace lodopt::renderer {
@@ -46,22 +47,29 @@ bool isSrgbUnit(int unit) {
 
 }  // namespace
 
-PbrPass::PbrPass(const scenes::Scene& scene, const RenderSettings& settings) : mScene(scene), mSettings(settings) {
-    mProgram = gl::linkProgram(shaders::kPbrVertex, shaders::kPbrFragment);
-    auto at = [&](const char* name) { return glGetUniformLocation(mProgram, name); };
-    mUniforms = {at("uModel"),           at("uModelViewProjection"), at("uNormalMatrix"),
-                 at("uMirror"),          at("uMapPresent"),          at("uMapUvSet"),
-                 at("uMapTransform"),    at("uBaseColorFactor"),     at("uMetallicFactor"),
-                 at("uRoughnessFactor"), at("uNormalScale"),         at("uOcclusionStrength"),
-                 at("uEmissive"),        at("uAlphaMode"),           at("uAlphaCutoff"),
-                 at("uUnlit"),           at("uCameraPosition"),      at("uToLight"),
-                 at("uKeyIrradiance"),   at("uSkyIrradiance"),       at("uGroundIrradiance")};
-    glUseProgram(mProgram);
+PbrPass::Program PbrPass::linkPbrProgram(const char* fragmentSource) {
+    Program program;
+    program.id = gl::linkProgram(shaders::kPbrVertex, fragmentSource);
+    auto at = [&](const char* name) { return glGetUniformLocation(program.id, name); };
+    program.uniforms = {at("uModel"),           at("uModelViewProjection"), at("uNormalMatrix"),
+                        at("uMirror"),          at("uMapPresent"),          at("uMapUvSet"),
+                        at("uMapTransform"),    at("uBaseColorFactor"),     at("uMetallicFactor"),
+                        at("uRoughnessFactor"), at("uNormalScale"),         at("uOcclusionStrength"),
+                        at("uEmissive"),        at("uAlphaMode"),           at("uAlphaCutoff"),
+                        at("uUnlit"),           at("uCameraPosition"),      at("uToLight"),
+                        at("uKeyIrradiance"),   at("uSkyIrradiance"),       at("uGroundIrradiance")};
+    program.drawIndex = at("uDrawIndex");
+    glUseProgram(program.id);
     const char* samplerNames[shaders::kTextureUnits] = {"uBaseColorMap", "uMetallicRoughnessMap", "uNormalMap",
                                                         "uOcclusionMap", "uEmissiveMap"};
     for (int unit = 0; unit < shaders::kTextureUnits; ++unit) glUniform1i(at(samplerNames[unit]), unit);
     glUseProgram(0);
     gl::checkGl("PBR program set-up");
+    return program;
+}
+
+PbrPass::PbrPass(const scenes::Scene& scene, const RenderSettings& settings) : mScene(scene), mSettings(settings) {
+    mMain = linkPbrProgram(shaders::kPbrFragment);
     // Each texture in the color space its slots read it in, sometimes both.
     std::vector<bool> linear(scene.textures.size(), false), srgb(scene.textures.size(), false);
     for (const scenes::Material& material : scene.materials) {
@@ -70,6 +78,16 @@ PbrPass::PbrPass(const scenes::Scene& scene, const RenderSettings& settings) : m
             if (!references[unit]->present()) continue;
             (isSrgbUnit(unit) ? srgb : linear)[std::size_t(references[unit]->texture)] = true;
             samplerFor(references[unit]->sampler);
+        }
+    }
+    mBlends.resize(scene.objects.size());
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        for (const scenes::Level& level : scene.objects[o].levels) {
+            const bool blended = std::any_of(level.meshes.begin(), level.meshes.end(), [&](const scenes::Mesh& mesh) {
+                return mesh.material >= 0 && !mesh.indices.empty() &&
+                       scene.materials[std::size_t(mesh.material)].alphaMode == scenes::AlphaMode::Blend;
+            });
+            mBlends[o].push_back(blended ? 1 : 0);
         }
     }
     mLinearTextures.assign(scene.textures.size(), 0);
@@ -87,7 +105,9 @@ PbrPass::~PbrPass() {
         }
     }
     for (const auto& [state, sampler] : mSamplers) glDeleteSamplers(1, &sampler);
-    glDeleteProgram(mProgram);
+    if (mFragmentBuffer != 0) glDeleteBuffers(1, &mFragmentBuffer);
+    if (mFragmentList.id != 0) glDeleteProgram(mFragmentList.id);
+    glDeleteProgram(mMain.id);
 }
 
 GLuint PbrPass::samplerFor(const scenes::SamplerState& state) {
@@ -106,31 +126,49 @@ GLuint PbrPass::samplerFor(const scenes::SamplerState& state) {
     return entry->second;
 }
 
-// Engines' order: opaque and masked surfaces first (object order), then blended ones back
-// to front by the distance of their object's bounds from the eye, without depth writes.
-void PbrPass::draw(const scenes::Combination& combination, const scenes::Camera& camera,
-                   const glm::mat4& viewProjection, const gl::GpuMeshes& meshes) {
-    glUseProgram(mProgram);
+float PbrPass::blendDistance(std::size_t object, int level, const scenes::Camera& camera) const {
+    return glm::length(scenes::worldBounds(mScene.objects[object], level).sphereCenter - camera.position);
+}
+
+void PbrPass::use(Program& program, const scenes::Camera& camera) {
+    mActive = &program;
+    glUseProgram(program.id);
+    const Uniforms& u = program.uniforms;
     const glm::vec3 toLight = -glm::normalize(mSettings.lightDirection);
     const glm::vec3 keyIrradiance(mSettings.keyIlluminance);
-    glUniform3fv(mUniforms.cameraPosition, 1, glm::value_ptr(camera.position));
-    glUniform3fv(mUniforms.toLight, 1, glm::value_ptr(toLight));
-    glUniform3fv(mUniforms.keyIrradiance, 1, glm::value_ptr(keyIrradiance));
-    glUniform3fv(mUniforms.skyIrradiance, 1, glm::value_ptr(mSettings.skyIrradiance));
-    glUniform3fv(mUniforms.groundIrradiance, 1, glm::value_ptr(mSettings.groundIrradiance));
+    glUniform3fv(u.cameraPosition, 1, glm::value_ptr(camera.position));
+    glUniform3fv(u.toLight, 1, glm::value_ptr(toLight));
+    glUniform3fv(u.keyIrradiance, 1, glm::value_ptr(keyIrradiance));
+    glUniform3fv(u.skyIrradiance, 1, glm::value_ptr(mSettings.skyIrradiance));
+    glUniform3fv(u.groundIrradiance, 1, glm::value_ptr(mSettings.groundIrradiance));
+}
+
+void PbrPass::sortBlended(const scenes::Combination& combination, const scenes::Camera& camera) {
     mBlended.clear();
     for (std::size_t o = 0; o < combination.size(); ++o) {
         const int level = combination[o];
-        if (level == scenes::kNotDrawn) continue;
-        if (drawObject(o, level, viewProjection, meshes, false)) {
-            const scenes::Bounds bounds = scenes::worldBounds(mScene.objects[o], level);
-            mBlended.emplace_back(glm::length(bounds.sphereCenter - camera.position), o);
-        }
+        if (level != scenes::kNotDrawn && blends(o, level)) mBlended.emplace_back(blendDistance(o, level, camera), o);
     }
-    if (mBlended.empty()) return;
     std::sort(mBlended.begin(), mBlended.end(), [](const auto& a, const auto& b) {
         return a.first != b.first ? a.first > b.first : a.second < b.second;
     });
+}
+
+// Engines' order: opaque and masked surfaces first (object order), then blended ones back
+// to front by blendDistance, without depth writes.
+void PbrPass::draw(const scenes::Combination& combination, const scenes::Camera& camera,
+                   const glm::mat4& viewProjection, const gl::GpuMeshes& meshes, Surfaces surfaces) {
+    use(mMain, camera);
+    if (surfaces != Surfaces::Blended) {
+        for (std::size_t o = 0; o < combination.size(); ++o) {
+            if (combination[o] != scenes::kNotDrawn) drawObject(o, combination[o], viewProjection, meshes, false);
+        }
+    }
+    if (surfaces == Surfaces::Opaque) return;
+    sortBlended(combination, camera);
+    if (mBlended.empty()) return;
+    // Over transparent black this blending leaves the color premultiplied by the coverage and
+    // the coverage in alpha, which composite() then lays over what is behind.
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
@@ -139,35 +177,82 @@ void PbrPass::draw(const scenes::Combination& combination, const scenes::Camera&
     glDisable(GL_BLEND);
 }
 
-// Draws object `o`'s meshes whose material blends (`blendPass`) or does not; returns
-// whether it has meshes of the other kind.
-bool PbrPass::drawObject(std::size_t o, int level, const glm::mat4& viewProjection, const gl::GpuMeshes& meshes,
+std::vector<PbrPass::ListedFragment> PbrPass::listBlendedFragments(const scenes::Combination& combination,
+                                                                   const scenes::Camera& camera,
+                                                                   const glm::mat4& viewProjection,
+                                                                   const gl::GpuMeshes& meshes) {
+    static_assert(sizeof(ListedFragment) == 20, "the layout of the shader's std430 ListedFragment");
+    if (mFragmentList.id == 0) {
+        // The same source with its first line (#version) replaced.
+        const std::string source =
+            std::string(shaders::kPbrFragmentListVersion) + (std::strchr(shaders::kPbrFragment, '\n') + 1);
+        mFragmentList = linkPbrProgram(source.c_str());
+        glGenBuffers(1, &mFragmentBuffer);
+    }
+    sortBlended(combination, camera);
+    std::vector<ListedFragment> fragments;
+    if (mBlended.empty()) return fragments;
+    const std::size_t header = 2 * sizeof(std::uint32_t);
+    // A first pass counts (or fits); a second, when the buffer was too small, fits.
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        if (mFragmentCapacity == 0) mFragmentCapacity = std::size_t(1) << 16;
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, mFragmentBuffer);
+        const std::uint32_t start[2] = {0, std::uint32_t(mFragmentCapacity)};
+        glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(header + mFragmentCapacity * sizeof(ListedFragment)),
+                     nullptr, GL_DYNAMIC_READ);
+        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(header), start);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, mFragmentBuffer);
+        use(mFragmentList, camera);
+        glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+        glDepthMask(GL_FALSE);
+        mDrawIndex = 0;
+        for (const auto& [distance, o] : mBlended) drawObject(o, combination[o], viewProjection, meshes, true);
+        glDepthMask(GL_TRUE);
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::uint32_t count = 0;
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof(count), &count);
+        gl::checkGl("blended fragment list");
+        if (count <= mFragmentCapacity) {
+            fragments.resize(count);
+            if (count > 0) {
+                glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, GLintptr(header), GLsizeiptr(count * sizeof(ListedFragment)),
+                                   fragments.data());
+            }
+            glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+            mActive = &mMain;
+            return fragments;
+        }
+        mFragmentCapacity = count;
+    }
+    throw RenderError("blended fragment list: the fragment count changed between two identical passes");
+}
+
+// Draws object `o`'s meshes whose material blends (`blendPass`) or does not.
+void PbrPass::drawObject(std::size_t o, int level, const glm::mat4& viewProjection, const gl::GpuMeshes& meshes,
                          bool blendPass) {
     const glm::mat4& model = mScene.objects[o].transform;
     const glm::mat4 mvp = viewProjection * model;
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
     const bool mirrored = glm::determinant(glm::mat3(model)) < 0.0f;
-    glUniformMatrix4fv(mUniforms.model, 1, GL_FALSE, glm::value_ptr(model));
-    glUniformMatrix4fv(mUniforms.modelViewProjection, 1, GL_FALSE, glm::value_ptr(mvp));
-    glUniformMatrix3fv(mUniforms.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-    glUniform1f(mUniforms.mirror, mirrored ? -1.0f : 1.0f);
+    const Uniforms& u = mActive->uniforms;
+    glUniformMatrix4fv(u.model, 1, GL_FALSE, glm::value_ptr(model));
+    glUniformMatrix4fv(u.modelViewProjection, 1, GL_FALSE, glm::value_ptr(mvp));
+    glUniformMatrix3fv(u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+    glUniform1f(u.mirror, mirrored ? -1.0f : 1.0f);
     // A mirroring transform turns counter-clockwise front faces clockwise.
     glFrontFace(mirrored ? GL_CW : GL_CCW);
     static const scenes::Material kDefaultMaterial;
-    bool otherKind = false;
     for (const gl::GpuMesh& mesh : meshes[o][level]) {
         const scenes::Material& material =
             mesh.material >= 0 ? mScene.materials[std::size_t(mesh.material)] : kDefaultMaterial;
-        if ((material.alphaMode == scenes::AlphaMode::Blend) != blendPass) {
-            otherKind = true;
-            continue;
-        }
+        if ((material.alphaMode == scenes::AlphaMode::Blend) != blendPass) continue;
         bindMaterial(material, mesh.hasTangents);
+        if (mActive->drawIndex >= 0) glUniform1ui(mActive->drawIndex, GLuint(mDrawIndex++));
         glBindVertexArray(mesh.vertexArray);
         glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);
     }
     glFrontFace(GL_CCW);
-    return otherKind;
 }
 
 void PbrPass::bindMaterial(const scenes::Material& material, bool hasTangents) {
@@ -186,19 +271,20 @@ void PbrPass::bindMaterial(const scenes::Material& material, bool hasTangents) {
         glBindTexture(GL_TEXTURE_2D, usable ? pool[std::size_t(map.texture)] : 0);
         glBindSampler(GLuint(unit), usable ? samplerFor(map.sampler) : 0);
     }
-    glUniform1iv(mUniforms.mapPresent, shaders::kTextureUnits, present);
-    glUniform1iv(mUniforms.mapUvSet, shaders::kTextureUnits, uvSet);
-    glUniformMatrix3fv(mUniforms.mapTransform, shaders::kTextureUnits, GL_FALSE, transforms);
-    glUniform4fv(mUniforms.baseColorFactor, 1, glm::value_ptr(material.baseColorFactor));
-    glUniform1f(mUniforms.metallicFactor, material.metallicFactor);
-    glUniform1f(mUniforms.roughnessFactor, material.roughnessFactor);
-    glUniform1f(mUniforms.normalScale, material.normalScale);
-    glUniform1f(mUniforms.occlusionStrength, material.occlusionStrength);
+    const Uniforms& u = mActive->uniforms;
+    glUniform1iv(u.mapPresent, shaders::kTextureUnits, present);
+    glUniform1iv(u.mapUvSet, shaders::kTextureUnits, uvSet);
+    glUniformMatrix3fv(u.mapTransform, shaders::kTextureUnits, GL_FALSE, transforms);
+    glUniform4fv(u.baseColorFactor, 1, glm::value_ptr(material.baseColorFactor));
+    glUniform1f(u.metallicFactor, material.metallicFactor);
+    glUniform1f(u.roughnessFactor, material.roughnessFactor);
+    glUniform1f(u.normalScale, material.normalScale);
+    glUniform1f(u.occlusionStrength, material.occlusionStrength);
     const glm::vec3 emissive = material.emissiveFactor * material.emissiveStrength;
-    glUniform3fv(mUniforms.emissive, 1, glm::value_ptr(emissive));
-    glUniform1i(mUniforms.alphaMode, int(material.alphaMode));
-    glUniform1f(mUniforms.alphaCutoff, material.alphaCutoff);
-    glUniform1i(mUniforms.unlit, material.unlit ? 1 : 0);
+    glUniform3fv(u.emissive, 1, glm::value_ptr(emissive));
+    glUniform1i(u.alphaMode, int(material.alphaMode));
+    glUniform1f(u.alphaCutoff, material.alphaCutoff);
+    glUniform1i(u.unlit, material.unlit ? 1 : 0);
     // Single-sided materials cull back faces (spec §3.9.6); double-sided ones light them
     // with the reversed normal.
     if (material.doubleSided) {

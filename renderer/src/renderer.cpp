@@ -7,6 +7,7 @@
 #include <cstring>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
+#include <tuple>
 
 #include "gl_common.hpp"
 #include "pbr_pass.hpp"
@@ -58,6 +59,34 @@ PixelRect projectedRect(const scenes::Object& object, int level, const glm::mat4
     const int y0 = height - int(std::ceil(toPixels(maxY, height))) - 2;
     const int y1 = height - int(std::floor(toPixels(minY, height))) + 2;
     return {std::max(x0, 0), std::max(y0, 0), std::min(x1, width), std::min(y1, height)};
+}
+
+// The layer's fragment stacks (Layer::stackPixels) out of `fragments` (pixels indexed in
+// `bound`): the pixels of layer.rect with two fragments or more, each stack in blending order.
+void stackFragments(std::vector<PbrPass::ListedFragment>& fragments, const PixelRect& bound, Layer& layer) {
+    std::sort(fragments.begin(), fragments.end(), [](const auto& a, const auto& b) {
+        return std::tie(a.pixel, a.draw, a.primitive) < std::tie(b.pixel, b.draw, b.primitive);
+    });
+    const PixelRect& rect = layer.rect;
+    layer.stackStarts.push_back(0);
+    for (std::size_t first = 0; first < fragments.size();) {
+        std::size_t end = first + 1;
+        while (end < fragments.size() && fragments[end].pixel == fragments[first].pixel) ++end;
+        const int x = bound.x0 + int(fragments[first].pixel % std::uint32_t(bound.width()));
+        const int y = bound.y0 + int(fragments[first].pixel / std::uint32_t(bound.width()));
+        if (end - first >= 2 && x >= rect.x0 && x < rect.x1 && y >= rect.y0 && y < rect.y1) {
+            layer.stackPixels.push_back(std::uint32_t(y - rect.y0) * std::uint32_t(rect.width()) +
+                                        std::uint32_t(x - rect.x0));
+            for (std::size_t f = first; f < end; ++f) {
+                Layer::BlendFragment stacked;
+                stacked.depth = fragments[f].depth;
+                std::memcpy(stacked.rgba, fragments[f].rgba, 4);
+                layer.stackFragments.push_back(stacked);
+            }
+            layer.stackStarts.push_back(std::uint32_t(layer.stackFragments.size()));
+        }
+        first = end;
+    }
 }
 
 }  // namespace
@@ -193,11 +222,37 @@ struct Renderer::Impl {
         }
     }
 
+    // What draw() clears first: color and depth (a frame), nothing, or the color alone to
+    // transparent black (a layer's blended surfaces, over its own opaque depth).
+    enum class Clear { ColorAndDepth, Nothing, ColorToTransparent };
+
     // Draws the given (object, level) pairs; level kNotDrawn skips the object. With `scissor`
     // (top-left origin), clears and draws only inside it: a layer's pixels outside its
-    // projected rectangle are never read.
+    // projected rectangle are never read. `surfaces` and `clearing` split a layer's passes.
     void draw(const scenes::Combination& combination, const scenes::Camera& camera,
-              const PixelRect* scissor = nullptr) {
+              const PixelRect* scissor = nullptr, PbrPass::Surfaces surfaces = PbrPass::Surfaces::All,
+              Clear clearing = Clear::ColorAndDepth) {
+        const glm::mat4 viewProjection = beginPass(camera, scissor);
+        if (clearing == Clear::ColorAndDepth) {
+            const glm::vec4& clear = settings.clearColor;
+            glClearColor(clear.r, clear.g, clear.b, clear.a);
+            glClearDepth(1.0);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        } else if (clearing == Clear::ColorToTransparent) {
+            glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+            glClear(GL_COLOR_BUFFER_BIT);
+        }
+        glUseProgram(program);
+        if (isPbr()) {
+            pbrPass->draw(combination, camera, viewProjection, meshes, surfaces);
+        } else {
+            drawLambert(combination, viewProjection);
+        }
+        endPass("draw");
+    }
+
+    // The state every pass starts from; returns the camera's view-projection matrix.
+    glm::mat4 beginPass(const scenes::Camera& camera, const PixelRect* scissor) {
         platform->makeCurrent();
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
         glViewport(0, 0, settings.width, settings.height);
@@ -212,22 +267,35 @@ struct Renderer::Impl {
         glDisable(GL_CULL_FACE);
         glDisable(GL_BLEND);
         glDisable(GL_DITHER);
-        const glm::vec4& clear = settings.clearColor;
-        glClearColor(clear.r, clear.g, clear.b, clear.a);
-        glClearDepth(1.0);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        glUseProgram(program);
-        const glm::mat4 viewProjection =
-            scenes::projectionMatrix(camera, float(settings.width) / float(settings.height)) *
-            scenes::viewMatrix(camera);
-        if (isPbr()) {
-            pbrPass->draw(combination, camera, viewProjection, meshes);
-        } else {
-            drawLambert(combination, viewProjection);
-        }
+        return scenes::projectionMatrix(camera, float(settings.width) / float(settings.height)) *
+               scenes::viewMatrix(camera);
+    }
+
+    void endPass(const char* what) {
         glBindVertexArray(0);
         glDisable(GL_SCISSOR_TEST);
-        gl::checkGl("draw");
+        gl::checkGl(what);
+    }
+
+    // The blended fragments of `combination` inside `bound` that pass the depth test against the
+    // depth buffer as it is (PbrPass::listBlendedFragments), each one's pixel turned into its
+    // row-major index in `bound` (rows top to bottom).
+    std::vector<PbrPass::ListedFragment> listBlendedFragments(const scenes::Combination& combination,
+                                                              const scenes::Camera& camera, const PixelRect& bound) {
+        const glm::mat4 viewProjection = beginPass(camera, &bound);
+        std::vector<PbrPass::ListedFragment> fragments =
+            pbrPass->listBlendedFragments(combination, camera, viewProjection, meshes);
+        endPass("blended fragment list");
+        std::size_t kept = 0;
+        for (const PbrPass::ListedFragment& fragment : fragments) {
+            const int x = int(fragment.pixel & 0xffffu), y = settings.height - 1 - int(fragment.pixel >> 16);
+            if (x < bound.x0 || x >= bound.x1 || y < bound.y0 || y >= bound.y1) continue;
+            PbrPass::ListedFragment& into = fragments[kept++];
+            into = fragment;
+            into.pixel = std::uint32_t(y - bound.y0) * std::uint32_t(bound.width()) + std::uint32_t(x - bound.x0);
+        }
+        fragments.resize(kept);
+        return fragments;
     }
 
     void drawLambert(const scenes::Combination& combination, const glm::mat4& viewProjection) {
@@ -396,10 +464,35 @@ Layer Renderer::renderLayer(int object, int level, const scenes::Camera& camera)
     if (bound.empty()) return layer;
     scenes::Combination alone(scene.objects.size(), scenes::kNotDrawn);
     alone[object] = level;
-    mImpl->draw(alone, camera, &bound);
     std::vector<std::uint8_t>& color = mImpl->layerColor;
     std::vector<float>& depth = mImpl->layerDepth;
-    mImpl->readBackRect(bound, color, depth);
+    const bool blends = mImpl->isPbr() && mImpl->pbrPass->blends(std::size_t(object), level);
+    // A layer with blended surfaces takes three passes over the same pixels: the opaque ones
+    // (color and the depth they hide others behind), the blended ones over transparent black in
+    // front of those (premultiplied color and coverage), then the blended ones' fragments.
+    std::vector<std::uint8_t> blendColor;
+    std::vector<float> opaqueDepth, farthest;
+    std::vector<PbrPass::ListedFragment> fragments;
+    if (blends) {
+        mImpl->draw(alone, camera, &bound, PbrPass::Surfaces::Opaque);
+        mImpl->readBackRect(bound, color, opaqueDepth);
+        mImpl->draw(alone, camera, &bound, PbrPass::Surfaces::Blended, Impl::Clear::ColorToTransparent);
+        mImpl->readBackRect(bound, blendColor, depth);
+        fragments = mImpl->listBlendedFragments(alone, camera, bound);
+        // Coverage: the nearer of the opaque surface and the nearest blended fragment.
+        depth = opaqueDepth;
+        farthest.assign(depth.size(), 1.0f);
+        std::vector<float> nearest(depth.size(), 1.0f);
+        for (const PbrPass::ListedFragment& fragment : fragments) {
+            const std::size_t at = std::size_t(fragment.pixel);  // re-indexed into the bound
+            nearest[at] = std::min(nearest[at], fragment.depth);
+            farthest[at] = farthest[at] == 1.0f ? fragment.depth : std::max(farthest[at], fragment.depth);
+            depth[at] = std::min(depth[at], fragment.depth);
+        }
+    } else {
+        mImpl->draw(alone, camera, &bound);
+        mImpl->readBackRect(bound, color, depth);
+    }
     const int boundWidth = bound.width();
     PixelRect rect{bound.x1, bound.y1, bound.x0, bound.y0};
     for (int y = 0; y < bound.height(); ++y) {
@@ -417,12 +510,23 @@ Layer Renderer::renderLayer(int object, int level, const scenes::Camera& camera)
     if (layer.coveredPixels == 0) return layer;
     layer.rect = rect;
     const int w = rect.width(), h = rect.height();
-    layer.rgba.resize(std::size_t(w) * h * 4);
-    layer.depth.resize(std::size_t(w) * h);
-    for (int y = 0; y < h; ++y) {
-        const std::size_t source = std::size_t(rect.y0 - bound.y0 + y) * boundWidth + std::size_t(rect.x0 - bound.x0);
-        std::memcpy(&layer.rgba[std::size_t(y) * w * 4], &color[source * 4], std::size_t(w) * 4);
-        std::memcpy(&layer.depth[std::size_t(y) * w], &depth[source], std::size_t(w) * sizeof(float));
+    // The rows of `rect` out of a bound-sized readback.
+    auto crop = [&](const auto& source, std::size_t channels, auto& target) {
+        target.resize(std::size_t(w) * h * channels);
+        for (int y = 0; y < h; ++y) {
+            const std::size_t from = std::size_t(rect.y0 - bound.y0 + y) * boundWidth + std::size_t(rect.x0 - bound.x0);
+            std::memcpy(&target[std::size_t(y) * w * channels], &source[from * channels],
+                        std::size_t(w) * channels * sizeof(source[0]));
+        }
+    };
+    crop(color, 4, layer.rgba);
+    crop(depth, 1, layer.depth);
+    if (blends) {
+        crop(blendColor, 4, layer.blendRgba);
+        crop(opaqueDepth, 1, layer.opaqueDepth);
+        crop(farthest, 1, layer.blendFarthest);
+        layer.blendDistance = mImpl->pbrPass->blendDistance(std::size_t(object), level, camera);
+        stackFragments(fragments, bound, layer);
     }
     layer.rowSpans = coveredRowSpans(layer);
     return layer;

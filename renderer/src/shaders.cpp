@@ -109,6 +109,25 @@ uniform vec3 uKeyIrradiance;
 uniform vec3 uSkyIrradiance;
 uniform vec3 uGroundIrradiance;
 out vec4 fragColor;
+#ifdef LODOPT_FRAGMENT_LIST
+// The fragment-list variant (kPbrFragmentListVersion): every fragment that passes the depth
+// test, appended with the color the blend unit receives. Early tests, so that a fragment the
+// depth buffer hides is never listed.
+layout(early_fragment_tests) in;
+struct ListedFragment {
+    uint pixel;  // x | y << 16, window coordinates (bottom-left origin)
+    float depth;
+    uint color;  // RGBA8
+    uint draw;   // the mesh draw's index in the pass: fragments blend in (draw, primitive) order
+    uint primitive;
+};
+layout(std430, binding = 0) buffer FragmentList {
+    uint listedCount;
+    uint listCapacity;
+    ListedFragment listed[];
+};
+uniform uint uDrawIndex;
+#endif
 
 const float kPi = 3.14159265358979;
 
@@ -199,7 +218,15 @@ void main() {
     vec3 emissive = uEmissive;
     if (uMapPresent[4] != 0) emissive *= sampleMap(uEmissiveMap, 4).rgb;
     color += emissive;
-    fragColor = vec4(encodeSrgb(neutralToneMap(color)), alpha);
+    vec4 result = vec4(encodeSrgb(neutralToneMap(color)), alpha);
+#ifdef LODOPT_FRAGMENT_LIST
+    uint slot = atomicAdd(listedCount, 1u);
+    if (slot < listCapacity) {
+        listed[slot] = ListedFragment(uint(gl_FragCoord.x) | (uint(gl_FragCoord.y) << 16u), gl_FragCoord.z,
+                                      packUnorm4x8(result), uDrawIndex, uint(gl_PrimitiveID));
+    }
+#endif
+    fragColor = result;
 }
 )";
 

@@ -11,6 +11,9 @@ extern const char* const kLambertFragment;
 // tone mapping, sRGB output.
 extern const char* const kPbrVertex;
 extern const char* const kPbrFragment;
+// kPbrFragment's first line for its fragment-list variant (SSBOs need GLSL 4.30): the same
+// shading, and every fragment appended to a buffer (PbrPass::listBlendedFragments).
+inline constexpr const char* kPbrFragmentListVersion = "#version 430 core\n#define LODOPT_FRAGMENT_LIST\n";
 
 // Vertex attribute locations shared by both programs.
 enum AttributeLocation { kPosition = 0, kNormal = 1, kUv0 = 2, kUv1 = 3, kTangent = 4, kColor = 5 };

@@ -260,6 +260,32 @@ TEST(PbrConformance, CompositeOfOpaqueAndMaskedLayersEqualsFullRender) {
     }
 }
 
+// Blended layers: composited back to front over the opaque composite, every AlphaBlendModeTest
+// view equals the full render to the bit, blended panels included (the composite blends with the
+// blend unit's arithmetic: docs/renderer.md "Layers and blending").
+TEST(PbrConformance, CompositeWithBlendedLayersMatchesFullRender) {
+    const scenes::Scene scene = loadRenderTest("AlphaBlendModeTest");
+    ASSERT_FALSE(scene.objects.empty());
+    const renderer::RenderSettings settings = pbrSettings(200);
+    renderer::Renderer renderer(scene, settings);
+    std::size_t blendedPixels = 0;
+    for (const scenes::Camera& camera : scene.views) {
+        std::vector<renderer::Layer> layers;
+        std::vector<const renderer::Layer*> chosen;
+        for (std::size_t o = 0; o < scene.objects.size(); ++o) layers.push_back(renderer.renderLayer(int(o), 0, camera));
+        for (const renderer::Layer& layer : layers) chosen.push_back(&layer);
+        const renderer::Frame full = renderer.render(scenes::referenceCombination(scene), camera);
+        renderer::Frame composed;
+        renderer::composite(chosen, settings.width, settings.height, settings.clearColor, composed);
+        EXPECT_EQ(full.rgba, composed.rgba) << camera.name;
+        EXPECT_EQ(full.depth, composed.depth) << camera.name;
+        for (const renderer::Layer& layer : layers) {
+            for (std::size_t i = 3; i < layer.blendRgba.size(); i += 4) blendedPixels += layer.blendRgba[i] != 0;
+        }
+    }
+    EXPECT_GT(blendedPixels, 1000u);  // the blended panels are drawn, and cover something
+}
+
 // The same inputs give the same pixels under PBR too, blended panels included, however often a
 // renderer draws them (each frame sorts its own blended objects afresh).
 TEST(PbrConformance, RepeatedRendersAreBitIdentical) {

@@ -11,6 +11,11 @@
 // from one layer per object by nearest depth. Because the rasterizer is deterministic, a
 // composite equals the full render except where two objects' surfaces have exactly equal
 // depth (the full render keeps the first drawn, the composite the lower object index).
+// Blended surfaces are laid over the opaque composite back to front with the blend unit's own
+// 8-bit arithmetic: a layer holds its blended surfaces pre-blended over transparent black
+// (premultiplied color and coverage) and, where several of its fragments cover a pixel, their
+// stack, blended fragment by fragment where another object's opaque surface passes between
+// them (docs/renderer.md "Layers and blending" states what is exact and the bound).
 #pragma once
 
 #include <cstdint>
@@ -93,6 +98,34 @@ struct Layer {
     // coordinates; coveredRowSpans). Compositing skips the rest of the row. Empty: not known,
     // whole rows are composited (the same result, slower).
     std::vector<RowSpan> rowSpans;
+
+    // Blended surfaces (glTF alphaMode BLEND under Shading::Pbr); all empty when the level has
+    // none. Then `depth` is the nearest depth of any of its fragments (what the layer covers),
+    // `opaqueDepth` that of its opaque and masked surfaces alone (what it hides others behind:
+    // blended surfaces write no depth), `rgba` the opaque surfaces' color, and `blendRgba` the
+    // blended surfaces drawn over transparent black in front of the object's own opaque ones:
+    // color premultiplied by coverage, coverage in alpha. `blendDistance` is the full render's
+    // back-to-front key (farther first, ties to the lower object index).
+    std::vector<std::uint8_t> blendRgba;
+    std::vector<float> opaqueDepth;
+    float blendDistance = 0.0f;
+    // Per pixel of `rect`, the farthest blended fragment's depth (1 = none). Where it differs
+    // from the nearest (`depth`), several fragments cover the pixel and an opaque surface of
+    // another object may pass between them; then the composite blends the ones in front of it
+    // from the pixel's fragment stack: each fragment's depth and color as the shader wrote
+    // it, in draw order.
+    std::vector<float> blendFarthest;
+    struct BlendFragment {
+        float depth = 1.0f;
+        std::uint8_t rgba[4] = {};
+        bool operator==(const BlendFragment&) const = default;
+    };
+    std::vector<std::uint32_t> stackPixels;  // ascending pixel indices (row-major in `rect`)
+    std::vector<std::uint32_t> stackStarts;  // stackPixels.size() + 1 offsets into stackFragments
+    std::vector<BlendFragment> stackFragments;
+    bool blends() const { return !blendRgba.empty(); }
+    // Per pixel of `rect`, the depth behind which this layer hides other objects (1 = none).
+    const std::vector<float>& occluderDepth() const { return blends() ? opaqueDepth : depth; }
 };
 
 // Backend behind the Renderer (Filament-style): creates and makes current a GL context.
@@ -139,7 +172,9 @@ private:
 };
 
 // Composites one layer per drawn object (nullptr = not drawn) into `out` by nearest depth,
-// ties to the lower object index; background is `clearColor`. `out` is resized as needed.
+// ties to the lower object index; background is `clearColor`; then the blended layers back to
+// front where their nearest fragment is in front of the opaque composite. `out` is resized as
+// needed; its depth is the opaque surfaces' (as the full render's).
 void composite(const std::vector<const Layer*>& layers, int width, int height, glm::vec4 clearColor, Frame& out);
 // Recomposites only `rect` of `out` (which already holds a composite of the same size).
 void compositeRect(const std::vector<const Layer*>& layers, PixelRect rect, glm::vec4 clearColor, Frame& out);
@@ -165,6 +200,7 @@ struct ChangeGrid {
 // path, once per candidate) allocates nothing after the first call.
 struct CompositeScratch {
     std::vector<const Layer*> reaching;  // the layers that reach the recomposited rows
+    std::vector<const Layer*> blended;   // those of them that blend, back to front
     std::vector<std::uint32_t> columns;  // per frame column, the current band's changed rows
 };
 void compositeSpansChanges(const std::vector<const Layer*>& layers, int top, std::span<const RowSpan> spans,
