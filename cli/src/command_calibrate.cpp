@@ -40,7 +40,7 @@ struct CalibrateOptions {
     std::uint64_t seed = 1;
     std::uint32_t sceneSeed = 1;
     std::string size = "512x512";
-    std::string shading = "lambert";
+    std::string shading = renderer::shadingName(renderer::kDefaultShading);
     int jitter = 3;
     int rounds = 6;
     int maxRounds = 25;

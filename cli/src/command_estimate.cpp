@@ -18,6 +18,7 @@ struct EstimateOptions {
     std::string levels;
     std::string model;  // empty = the profile's default
     std::string size;   // empty = the profile's
+    std::string shading;  // empty = the profile's
     std::uint32_t seed = 1;
     bool noRendererCheck = false;
     OutputOptions output;
@@ -62,6 +63,7 @@ void runEstimate(const EstimateOptions& options) {
 
     int width = profile.width, height = profile.height;
     if (!options.size.empty()) parseSize(options.size, width, height);
+    const std::string shading = options.shading.empty() ? profile.shading : options.shading;
     const int view = scenes::findView(scene, options.view);
     scenes::Combination combination = scenes::referenceCombination(scene);
     if (!options.levels.empty()) {
@@ -74,7 +76,7 @@ void runEstimate(const EstimateOptions& options) {
     }
     const std::string glRenderer = options.noRendererCheck ? std::string() : currentGlRenderer(warnings);
     for (const std::string& w :
-         timemodel::profileWarnings(profile, glRenderer, width, height, timemodel::describeMachine())) {
+         timemodel::profileWarnings(profile, glRenderer, width, height, timemodel::describeMachine(), shading)) {
         warnings.push_back(w);
     }
 
@@ -91,6 +93,7 @@ void runEstimate(const EstimateOptions& options) {
                    {"levels", combination},
                    {"width", width},
                    {"height", height},
+                   {"shading", shading},
                    {"model", model->name()},
                    {"profile", source},
                    {"predicted_ms", predictedMs},
@@ -99,7 +102,7 @@ void runEstimate(const EstimateOptions& options) {
         return;
     }
     std::cout << "predicted_ms " << predictedMs << " (" << model->name() << " model, " << source << "; " << scene.name
-              << ", view '" << scene.views[view].name << "', " << width << "x" << height << ")\n";
+              << ", view '" << scene.views[view].name << "', " << width << "x" << height << ", " << shading << ")\n";
 }
 
 }  // namespace
@@ -115,6 +118,10 @@ void addEstimateCommand(CLI::App& app) {
                         "One level per object, comma-separated (-1 = not drawn); default all 0 (the reference)");
     command->add_option("--model", options->model, "linear, dong or wimmer (default: the profile's default)");
     command->add_option("--size", options->size, "WIDTHxHEIGHT (default: the profile's render size)");
+    command
+        ->add_option("--shading", options->shading,
+                     "lambert or pbr: how the frame is drawn (default: as the profile was measured)")
+        ->check(CLI::IsMember({"lambert", "pbr"}));
     command->add_option("--seed", options->seed, "Seed of a built-in scene")->capture_default_str();
     command->add_flag("--no-renderer-check", options->noRendererCheck,
                       "Do not open an OpenGL context to compare the renderer with the profile's");

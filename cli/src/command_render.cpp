@@ -14,7 +14,7 @@ void addRenderCommand(CLI::App& app) {
         std::string view = "0";
         std::string levels;
         std::string size = "512x512";
-        std::string shading = "lambert";
+        std::string shading = renderer::shadingName(renderer::kDefaultShading);
         std::string out = "render.png";
         std::string depthOut;
         std::uint32_t seed = 1;

@@ -43,6 +43,7 @@ struct ScheduleOptions {
     bool noBaseline = false;
     bool checkFeatures = false;
     std::string size = "512x512";
+    std::string shading = renderer::shadingName(renderer::kDefaultShading);
     std::string profile;
     std::string model;
     std::string organisation = "flat";
@@ -86,6 +87,7 @@ nlohmann::json checkpointIdentity(const ScheduleOptions& o, const scheduler::Sch
             {"no-baseline", o.noBaseline},
             {"check-features", o.checkFeatures},
             {"size", o.size},
+            {"shading", o.shading},
             {"profile", o.profile},
             {"model", o.model},
             {"organisation", o.organisation},
@@ -238,6 +240,7 @@ MeasurementCeiling probeMeasurementCeiling(renderer::Renderer& renderer, const s
 void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     renderer::RenderSettings settings;
     parseSize(options.size, settings.width, settings.height);
+    settings.shading = renderer::parseShading(options.shading);
     const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
     if (scene.objects.empty()) throw UsageError("scene '" + scene.name + "' has no objects");
     scenes::CameraPath path = options.path.empty() ? defaultCameraPath(scene) : loadCameraPath(scene, options.path);
@@ -435,6 +438,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         {"frames_per_second", path.framesPerSecond},
         {"budget_ms", budget},
         {"size", std::to_string(settings.width) + "x" + std::to_string(settings.height)},
+        {"shading", options.shading},
         {"organisation", scheduler::toString(parameters.organisation)},
         {"features", scheduler::toString(mode)},
         {"switch_control", parameters.switchControl.enabled},
@@ -537,6 +541,7 @@ void addScheduleCommand(CLI::App& app) {
     command->add_flag("--check-features", options->checkFeatures,
                       "Also predict each decision from exact features (exact_predicted_ms; slow)");
     command->add_option("--size", options->size, "Render size WIDTHxHEIGHT (as calibrated)")->capture_default_str();
+    addShadingOption(*command, options->shading);
     command->add_option("--profile", options->profile, "Device profile from 'lodopt calibrate' (default: shipped)");
     command->add_option("--model", options->model, "Time model in the profile (default: the profile's default)");
     command->add_option("--organisation", options->organisation, "flat (DONG15) or tiles (CITY17 quadtree)")

@@ -29,7 +29,7 @@ struct OptimizeOptions {
     double budgetMs = 0.0;
     std::uint64_t seed = 1;
     std::string size = "512x512";
-    std::string shading = "lambert";  // renderer::Shading by name
+    std::string shading = renderer::shadingName(renderer::kDefaultShading);  // renderer::Shading by name
     std::string evalPath = "fast";
     int threads = std::max(1, int(std::thread::hardware_concurrency()));
     // Fast-path evaluation states (LayerEvaluator); tune keeps one evaluator per view and

@@ -144,13 +144,13 @@ TEST_F(OptimizeCli, BadOptionsAreUsageErrors) {
 // result.json says which fill probability the swarm used: the default, --paper's 0, an
 // explicit --fill, and none for an algorithm without a swarm.
 TEST_F(OptimizeCli, ResultRecordsTheFillProbability) {
-    const std::string common = " --scene harbor --size 128x128 --quiet --max-iterations 2 --budget-ms 0.9";
+    const std::string common = " --scene harbor --size 128x128 --quiet --max-iterations 2 --budget-ms 1.5";
     auto fillOf = [&](const std::string& options) {
         const std::filesystem::path out = dir / "fill";
         const CommandResult run = runLodopt("optimize" + common + options + " --out " + out.string());
         EXPECT_EQ(run.exitCode, 0) << options << "\n" << run.output;
         const nlohmann::json result = readJson(out / "result.json");
-        EXPECT_LE(result["predicted_ms"].get<double>(), 0.9) << options;
+        EXPECT_LE(result["predicted_ms"].get<double>(), 1.5) << options;
         return result["fill_probability"];
     };
     EXPECT_EQ(fillOf(""), nlohmann::json(0.15));
@@ -166,9 +166,10 @@ TEST_F(OptimizeCli, ResultRecordsTheFillProbability) {
 TEST_F(OptimizeCli, DefaultOptimizerNeverLosesToScreensize) {
     for (const char* view : {"overview", "ship_close", "aircraft_chase", "far"}) {
         SCOPED_TRACE(view);
-        // At 128x128 the shipped profile predicts 0.23-0.57 ms all-coarsest, 1.0-2.5 ms all-finest.
+        // At 128x128 the shipped profile predicts 0.59-1.23 ms all-coarsest, 2.2-4.2 ms all-finest
+        // (lodopt estimate --scene harbor --size 128x128 --view V [--levels 5,4,4]).
         const std::string common = std::string(" --scene harbor --size 128x128 --quiet --max-iterations 2 --view ") +
-                                   view + " --budget-ms 0.9";
+                                   view + " --budget-ms 1.5";
         ASSERT_EQ(runLodopt("optimize" + common + " --out " + (dir / "seeded").string()).exitCode, 0);
         ASSERT_EQ(runLodopt("optimize" + common + " --algo screensize --out " + (dir / "engine").string()).exitCode, 0);
         ASSERT_EQ(runLodopt("optimize" + common + " --seed-from none --out " + (dir / "unseeded").string()).exitCode,
@@ -179,7 +180,7 @@ TEST_F(OptimizeCli, DefaultOptimizerNeverLosesToScreensize) {
         EXPECT_EQ(seeded["seeded_from"], nlohmann::json::array({"screensize", "mckp"}));
         EXPECT_EQ(unseeded["seeded_from"], nlohmann::json::array());
         EXPECT_GE(seeded["search_fitness"].get<double>(), engine["search_fitness"].get<double>());
-        EXPECT_LE(seeded["predicted_ms"].get<double>(), 0.9);
+        EXPECT_LE(seeded["predicted_ms"].get<double>(), 1.5);
         EXPECT_LT(engine["search_fitness"].get<double>(), 1.0) << "the budget should force coarser levels";
     }
     EXPECT_EQ(runLodopt("optimize --budget-ms 4 --seed-from magic --out " + (dir / "x").string()).exitCode, 2);

@@ -308,6 +308,7 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
     EXPECT_EQ(summary["frames"], 8);
     EXPECT_EQ(summary["path"], "orbit");
     EXPECT_EQ(summary["switch_rule"], "hysteresis");  // the default (docs/scheduler.md, Goal 4)
+    EXPECT_EQ(summary["shading"], "pbr");              // renderer::kDefaultShading
     EXPECT_EQ(summary["switch_margin"].get<double>(), 0.05);
     EXPECT_EQ(summary["switch_refill"].get<double>(), 0.1);
     EXPECT_GT(summary["decision_us"]["max"].get<double>(), 0.0);

@@ -212,4 +212,18 @@ TEST_F(TimeModelCli, EstimateWithoutAProfileUsesTheShippedOne) {
     ASSERT_FALSE(result.is_null());
     EXPECT_EQ(result["profile"], "shipped:harbor");
     EXPECT_GT(result["predicted_ms"].get<double>(), 0.0);
+    // The frame is drawn as the profile was measured unless --shading says otherwise, which warns.
+    EXPECT_EQ(result["shading"], lodopt::timemodel::shippedProfile("harbor").shading);
+    const std::string other = result["shading"] == "pbr" ? "lambert" : "pbr";
+    const nlohmann::json otherShading =
+        estimate("--scene harbor --view 0 --levels 0,2,1 --no-renderer-check --shading " + other);
+    ASSERT_FALSE(otherShading.is_null());
+    EXPECT_EQ(otherShading["shading"], other);
+    EXPECT_EQ(otherShading["predicted_ms"], result["predicted_ms"]);
+    bool warned = false;
+    for (const auto& warning : otherShading["warnings"]) {
+        warned |= warning.get<std::string>().find("measured with --shading") != std::string::npos;
+    }
+    EXPECT_TRUE(warned) << otherShading.dump();
+    estimate("--scene harbor --shading phong", 2);
 }

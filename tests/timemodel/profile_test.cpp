@@ -136,18 +136,20 @@ TEST(Profile, BadFilesGiveMessagesNamingTheFileAndField) {
 
 TEST(Profile, WarnsWhenRendererSizeOrMachineDiffer) {
     const timemodel::DeviceProfile profile = sampleProfile();
-    EXPECT_TRUE(timemodel::profileWarnings(profile, profile.glRenderer, 512, 384, profile.machine).empty());
-    EXPECT_EQ(timemodel::profileWarnings(profile, "NVIDIA / RTX", 512, 384, profile.machine).size(), 1u);
-    EXPECT_EQ(timemodel::profileWarnings(profile, profile.glRenderer, 1024, 384, profile.machine).size(), 1u);
-    EXPECT_EQ(timemodel::profileWarnings(profile, "", 512, 384, {"Other CPU", 64, ""}).size(), 1u);
+    EXPECT_TRUE(timemodel::profileWarnings(profile, profile.glRenderer, 512, 384, profile.machine, profile.shading).empty());
+    EXPECT_EQ(timemodel::profileWarnings(profile, "NVIDIA / RTX", 512, 384, profile.machine, profile.shading).size(), 1u);
+    EXPECT_EQ(timemodel::profileWarnings(profile, profile.glRenderer, 1024, 384, profile.machine, profile.shading).size(), 1u);
+    EXPECT_EQ(timemodel::profileWarnings(profile, "", 512, 384, {"Other CPU", 64, ""}, profile.shading).size(), 1u);
+    const std::string otherShading = profile.shading == "pbr" ? "lambert" : "pbr";
+    EXPECT_EQ(timemodel::profileWarnings(profile, profile.glRenderer, 512, 384, profile.machine, otherShading).size(), 1u);
     // llvmpipe's thread count: calibrated with LP_NUM_THREADS=1, used without it.
     timemodel::DeviceProfile oneThread = profile;
     oneThread.machine.llvmpipeThreads = "1";
     const std::vector<std::string> warnings =
-        timemodel::profileWarnings(oneThread, profile.glRenderer, 512, 384, profile.machine);
+        timemodel::profileWarnings(oneThread, profile.glRenderer, 512, 384, profile.machine, profile.shading);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("LP_NUM_THREADS 1, this process has unset"), std::string::npos) << warnings[0];
-    EXPECT_TRUE(timemodel::profileWarnings(oneThread, profile.glRenderer, 512, 384, oneThread.machine).empty());
+    EXPECT_TRUE(timemodel::profileWarnings(oneThread, profile.glRenderer, 512, 384, oneThread.machine, profile.shading).empty());
 }
 
 TEST(Profile, RecordsTheRasterizerThreadsAndReadsOlderFilesWithout) {

@@ -34,7 +34,7 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-// How surfaces are lit (docs/renderer.md "Shading").
+// How surfaces are lit (docs/renderer.md "Shading"). Pbr is the default: what an engine shows.
 enum class Shading : std::uint8_t {
     // The papers' shading: base color x (ambient + (1 - ambient) max(n.l, 0)), two-sided, no
     // other material property; byte-identical to lodopt's figures measured with it.
@@ -43,6 +43,7 @@ enum class Shading : std::uint8_t {
     // back-face culling, the light rig below, PBR Neutral tone mapping, sRGB output.
     Pbr,
 };
+inline constexpr Shading kDefaultShading = Shading::Pbr;
 // "lambert" / "pbr"; parseShading throws std::invalid_argument on anything else.
 const char* shadingName(Shading shading);
 Shading parseShading(const std::string& name);
@@ -50,7 +51,7 @@ Shading parseShading(const std::string& name);
 struct RenderSettings {
     int width = 512;   // pixels, 1..16384
     int height = 512;  // pixels, 1..16384
-    Shading shading = Shading::Lambert;
+    Shading shading = kDefaultShading;
     glm::vec3 lightDirection{-0.4f, -1.0f, -0.3f};  // world space, towards the scene
     float ambient = 0.3f;                           // Lambert: 0..1 share of unlit color
     // PBR light rig: the key light's irradiance on a surface facing it (linear, white), and a

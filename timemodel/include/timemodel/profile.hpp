@@ -120,7 +120,7 @@ std::unique_ptr<TimeModel> modelFromProfile(const DeviceProfile& profile, const 
 // `glRenderer` skips that check.
 std::vector<std::string> profileWarnings(const DeviceProfile& profile, const std::string& glRenderer, int width,
                                          int height, const MachineDescription& machine,
-                                         const std::string& shading = "lambert");
+                                         const std::string& shading);
 
 // Scenes with a profile built into the library.
 std::vector<std::string> shippedProfileScenes();
