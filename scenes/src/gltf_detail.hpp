@@ -50,6 +50,17 @@ bool isUnderstoodExtension(const std::string& name);
 std::vector<unsigned char> rewriteForTinygltf(std::vector<unsigned char> bytes, bool binary,
                                               std::vector<int>& fallbackBuffers);
 
+// Valid glTF that tinygltf 2.7 refuses, rewritten so that it reads it: integral numbers written
+// as floats become integers; a buffer without uri (other than a .glb's own; the validator
+// accepts it, its data is the application's) reads as zeros of its byteLength, with a note in
+// `notes` when something drawn reads it (a node's mesh primitives or skin, an animation, an
+// image); an accessor of a type glTF does not define that nothing drawn reads becomes a scalar;
+// an accessor without bufferView or sparse holds zeros by the spec (one zero-filled buffer).
+// Zeros up to 16 MiB in all. The rewritten file, or empty when nothing changed. Called only
+// after tinygltf has refused the file, so files it reads pay nothing.
+std::vector<unsigned char> standInsForUnreadableObjects(const std::vector<unsigned char>& bytes, bool binary,
+                                                    std::vector<std::string>& notes);
+
 // The refusal of docs/gltf.md: a required extension lodopt neither decodes nor can draw
 // faithfully without, named ("extensionsRequired: KHR_texture_basisu is not supported").
 void checkRequiredExtensions(const tinygltf::Model& model, const std::string& file);

@@ -6,6 +6,7 @@
 // changes how the model looks and is not implemented gets one warning naming it: the model is
 // still drawn, without it.
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <cstring>
 #include <set>
@@ -116,6 +117,31 @@ bool hasUriToRewrite(const char* text, std::size_t length) {
     return false;
 }
 
+// The file `bytes` (a .gltf, or a .glb whose JSON chunk is replaced) with `document` as its
+// JSON; empty when the document cannot be written (invalid UTF-8).
+std::vector<unsigned char> withJson(const std::vector<unsigned char>& bytes, bool binary, const nlohmann::json& document) {
+    std::string json;
+    try {
+        json = document.dump();
+    } catch (const nlohmann::json::exception&) {
+        return {};  // invalid UTF-8: let tinygltf report what it finds
+    }
+    if (!binary) return std::vector<unsigned char>(json.begin(), json.end());
+    while (json.size() % 4 != 0) json += ' ';
+    // Same container, new JSON chunk, the rest (BIN chunk) byte for byte.
+    const std::size_t jsonBegin = 20;
+    const std::size_t jsonLength = std::min<std::size_t>(readU32(bytes, 12), bytes.size() - 20);
+    const std::size_t restBegin = jsonBegin + jsonLength;
+    const std::size_t total = std::min<std::size_t>(readU32(bytes, 8), bytes.size());
+    std::vector<unsigned char> rebuilt(bytes.begin(), bytes.begin() + 8);
+    appendU32(rebuilt, static_cast<std::uint32_t>(12 + 8 + json.size() + (total - std::min(total, restBegin))));
+    appendU32(rebuilt, static_cast<std::uint32_t>(json.size()));
+    appendU32(rebuilt, 0x4E4F534Au);
+    rebuilt.insert(rebuilt.end(), json.begin(), json.end());
+    if (restBegin < total) rebuilt.insert(rebuilt.end(), bytes.begin() + restBegin, bytes.begin() + total);
+    return rebuilt;
+}
+
 }  // namespace
 
 std::uint64_t extensionInteger(const tinygltf::Value& object, const char* key, std::uint64_t fallback,
@@ -205,24 +231,197 @@ std::vector<unsigned char> rewriteForTinygltf(std::vector<unsigned char> bytes, 
         for (auto& image : document["images"]) rewriteUri(image, true);
     }
     if (!changed) return bytes;
-    std::string json;
-    try {
-        json = document.dump();
-    } catch (const nlohmann::json::exception&) {
-        return bytes;  // invalid UTF-8: let tinygltf report what it finds
+    std::vector<unsigned char> rebuilt = withJson(bytes, binary, document);
+    return rebuilt.empty() ? bytes : rebuilt;
+}
+
+// Integral numbers written as floats (`"byteLength": 1.0`, valid JSON and valid glTF) as
+// integers, which tinygltf requires where the schema says integer; true when any changed.
+bool integralFloatsToIntegers(nlohmann::json& value) {
+    bool changed = false;
+    if (value.is_number_float()) {
+        const double number = value.get<double>();
+        if (number == std::floor(number) && std::abs(number) < 9007199254740992.0) {
+            value = static_cast<std::int64_t>(number);
+            changed = true;
+        }
+    } else if (value.is_array() || value.is_object()) {
+        for (auto& child : value) changed |= integralFloatsToIntegers(child);
     }
-    if (!binary) return std::vector<unsigned char>(json.begin(), json.end());
-    while (json.size() % 4 != 0) json += ' ';
-    // Same container, new JSON chunk, the rest (BIN chunk) byte for byte.
-    const std::size_t restBegin = jsonBegin + jsonLength;
-    const std::size_t total = std::min<std::size_t>(readU32(bytes, 8), bytes.size());
-    std::vector<unsigned char> rebuilt(bytes.begin(), bytes.begin() + 8);
-    appendU32(rebuilt, static_cast<std::uint32_t>(12 + 8 + json.size() + (total - std::min(total, restBegin))));
-    appendU32(rebuilt, static_cast<std::uint32_t>(json.size()));
-    appendU32(rebuilt, 0x4E4F534Au);
-    rebuilt.insert(rebuilt.end(), json.begin(), json.end());
-    if (restBegin < total) rebuilt.insert(rebuilt.end(), bytes.begin() + restBegin, bytes.begin() + total);
-    return rebuilt;
+    return changed;
+}
+
+std::vector<unsigned char> standInsForUnreadableObjects(const std::vector<unsigned char>& bytes, bool binary,
+                                                    std::vector<std::string>& notes) {
+    std::size_t jsonBegin = 0, jsonLength = bytes.size();
+    if (binary) {
+        if (bytes.size() < 20) return {};
+        jsonBegin = 20;
+        jsonLength = std::min<std::size_t>(readU32(bytes, 12), bytes.size() - 20);
+    }
+    const char* text = reinterpret_cast<const char*>(bytes.data()) + jsonBegin;
+    nlohmann::json document = nlohmann::json::parse(text, text + jsonLength, nullptr, false);
+    if (document.is_discarded() || !document.is_object()) return {};
+    auto arrayOf = [&](const char* key) -> nlohmann::json* {
+        const auto found = document.find(key);
+        return found != document.end() && found->is_array() ? &*found : nullptr;
+    };
+    auto indexIn = [](const nlohmann::json& owner, const char* key, std::set<std::int64_t>& into) {
+        if (owner.is_object() && owner.contains(key) && owner[key].is_number_integer()) into.insert(owner[key].get<std::int64_t>());
+    };
+    bool changed = integralFloatsToIntegers(document);
+
+    // What a drawn node reads: the accessors of its mesh's primitives (attributes, indices,
+    // morph targets) and of its skin, and every animation's samplers; then the bufferViews of
+    // those accessors (sparse ones included) and of every image, and their buffers.
+    std::set<std::int64_t> drawnMeshes, drawnSkins, read, readViews, readBuffers;
+    if (const nlohmann::json* nodes = arrayOf("nodes")) {
+        for (const auto& node : *nodes) {
+            indexIn(node, "mesh", drawnMeshes);
+            indexIn(node, "skin", drawnSkins);
+        }
+    }
+    if (const nlohmann::json* meshes = arrayOf("meshes")) {
+        for (std::int64_t m : drawnMeshes) {
+            if (m < 0 || m >= std::int64_t(meshes->size())) continue;
+            const nlohmann::json& mesh = (*meshes)[std::size_t(m)];
+            if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+            for (const auto& primitive : mesh["primitives"]) {
+                if (!primitive.is_object()) continue;
+                indexIn(primitive, "indices", read);
+                const auto addMap = [&](const nlohmann::json& map) {
+                    if (!map.is_object()) return;
+                    for (const auto& [name, index] : map.items()) {
+                        if (index.is_number_integer()) read.insert(index.get<std::int64_t>());
+                    }
+                };
+                if (primitive.contains("attributes")) addMap(primitive["attributes"]);
+                if (primitive.contains("targets") && primitive["targets"].is_array()) {
+                    for (const auto& target : primitive["targets"]) addMap(target);
+                }
+            }
+        }
+    }
+    if (const nlohmann::json* skins = arrayOf("skins")) {
+        for (std::int64_t k : drawnSkins) {
+            if (k >= 0 && k < std::int64_t(skins->size())) indexIn((*skins)[std::size_t(k)], "inverseBindMatrices", read);
+        }
+    }
+    if (const nlohmann::json* animations = arrayOf("animations")) {
+        for (const auto& animation : *animations) {
+            if (!animation.is_object() || !animation.contains("samplers") || !animation["samplers"].is_array()) continue;
+            for (const auto& sampler : animation["samplers"]) {
+                indexIn(sampler, "input", read);
+                indexIn(sampler, "output", read);
+            }
+        }
+    }
+    nlohmann::json* accessors = arrayOf("accessors");
+    if (accessors) {
+        for (std::int64_t a : read) {
+            if (a < 0 || a >= std::int64_t(accessors->size())) continue;
+            const nlohmann::json& accessor = (*accessors)[std::size_t(a)];
+            indexIn(accessor, "bufferView", readViews);
+            if (accessor.is_object() && accessor.contains("sparse") && accessor["sparse"].is_object()) {
+                for (const char* part : {"indices", "values"}) {
+                    if (accessor["sparse"].contains(part)) indexIn(accessor["sparse"][part], "bufferView", readViews);
+                }
+            }
+        }
+    }
+    if (const nlohmann::json* images = arrayOf("images")) {
+        for (const auto& image : *images) indexIn(image, "bufferView", readViews);
+    }
+    if (const nlohmann::json* views = arrayOf("bufferViews")) {
+        for (std::int64_t v : readViews) {
+            if (v >= 0 && v < std::int64_t(views->size())) indexIn((*views)[std::size_t(v)], "buffer", readBuffers);
+        }
+    }
+
+    // A buffer without uri (other than a .glb's own) has no data in the file: zeros of its
+    // length stand in (up to 16 MiB), with a note when something drawn reads them.
+    // Zeros written into the file in all, so that a small file cannot make a large one.
+    std::uint64_t zeroBudget = std::uint64_t(16) << 20;
+    if (nlohmann::json* buffers = arrayOf("buffers")) {
+        for (std::size_t b = binary ? 1 : 0; b < buffers->size(); ++b) {
+            nlohmann::json& buffer = (*buffers)[b];
+            if (!buffer.is_object() || buffer.contains("uri")) continue;
+            const auto length = buffer.find("byteLength");
+            if (length == buffer.end() || !length->is_number_unsigned() || length->get<std::uint64_t>() == 0 ||
+                length->get<std::uint64_t>() > zeroBudget) {
+                continue;
+            }
+            zeroBudget -= length->get<std::uint64_t>();
+            const std::string zeros(static_cast<std::size_t>(length->get<std::uint64_t>()), '\0');
+            buffer["uri"] = "data:application/octet-stream;base64," + base64Encode(zeros);
+            changed = true;
+            if (readBuffers.count(std::int64_t(b)) != 0) {
+                notes.push_back(element("buffers", int(b)) + " has no uri and the file holds no data for it: "
+                                "what is drawn from it reads zeros");
+            }
+        }
+    }
+
+    if (accessors) {
+        static const std::map<std::string, int> kComponents = {{"SCALAR", 1}, {"VEC2", 2},  {"VEC3", 3}, {"VEC4", 4},
+                                                               {"MAT2", 4},   {"MAT3", 9},  {"MAT4", 16}};
+        static const std::map<int, int> kComponentBytes = {{5120, 1}, {5121, 1}, {5122, 2},
+                                                           {5123, 2}, {5125, 4}, {5126, 4}};
+        // An unused accessor of a type glTF does not define (valid: the validator warns):
+        // a scalar stand-in.
+        for (std::size_t a = 0; a < accessors->size(); ++a) {
+            nlohmann::json& accessor = (*accessors)[a];
+            if (!accessor.is_object() || read.count(std::int64_t(a)) != 0) continue;
+            const auto type = accessor.find("type");
+            if (type != accessor.end() && type->is_string() && kComponents.count(type->get<std::string>()) != 0) continue;
+            accessor["type"] = "SCALAR";
+            accessor.erase("min");
+            accessor.erase("max");
+            changed = true;
+        }
+        // An accessor without bufferView or sparse holds zeros (spec 3.6.2.1): one zero-filled
+        // buffer, within what the budget leaves, stands in for all of them.
+        std::vector<std::size_t> zeroed;
+        std::uint64_t zeroBytes = 0;
+        for (std::size_t a = 0; a < accessors->size(); ++a) {
+            const nlohmann::json& accessor = (*accessors)[a];
+            if (!accessor.is_object() || accessor.contains("bufferView") || accessor.contains("sparse")) continue;
+            const auto type = accessor.find("type");
+            const auto component = accessor.find("componentType");
+            const auto count = accessor.find("count");
+            if (type == accessor.end() || !type->is_string() || component == accessor.end() ||
+                !component->is_number_integer() || count == accessor.end() || !count->is_number_unsigned()) {
+                continue;
+            }
+            const auto components = kComponents.find(type->get<std::string>());
+            const auto componentBytes = kComponentBytes.find(component->get<int>());
+            if (components == kComponents.end() || componentBytes == kComponentBytes.end()) continue;
+            const std::uint64_t elements = count->get<std::uint64_t>();
+            if (elements == 0 || elements > zeroBudget) continue;
+            // Matrix columns of 1- and 2-byte components are 4-byte aligned (spec 3.6.2.4).
+            std::uint64_t element = std::uint64_t(components->second) * std::uint64_t(componentBytes->second);
+            if (type->get<std::string>() == "MAT2" && componentBytes->second == 1) element = 8;
+            if (type->get<std::string>() == "MAT3" && componentBytes->second < 4) element = componentBytes->second == 1 ? 12 : 24;
+            const std::uint64_t needed = elements * element;
+            if (needed > zeroBudget) continue;
+            zeroBytes = std::max(zeroBytes, needed);
+            zeroed.push_back(a);
+        }
+        if (!zeroed.empty()) {
+            nlohmann::json& buffers = document["buffers"];
+            nlohmann::json& views = document["bufferViews"];
+            if (buffers.is_null()) buffers = nlohmann::json::array();
+            if (views.is_null()) views = nlohmann::json::array();
+            if (!buffers.is_array() || !views.is_array()) return {};
+            const std::string zeros(static_cast<std::size_t>(zeroBytes), '\0');
+            buffers.push_back({{"uri", "data:application/octet-stream;base64," + base64Encode(zeros)},
+                               {"byteLength", zeroBytes}});
+            views.push_back({{"buffer", buffers.size() - 1}, {"byteLength", zeroBytes}});
+            for (std::size_t a : zeroed) (*accessors)[a]["bufferView"] = views.size() - 1;
+            changed = true;
+        }
+    }
+    return changed ? withJson(bytes, binary, document) : std::vector<unsigned char>();
 }
 
 void checkRequiredExtensions(const tinygltf::Model& model, const std::string& file) {

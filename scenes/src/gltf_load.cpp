@@ -229,15 +229,36 @@ Scene loadGltf(const std::string& path, const GltfLoadOptions& options) {
     deferred.model = &model;
     std::string error, warning;
     const std::string baseDir = fs::path(path).parent_path().string();
-    bool parsed = false;
-    try {
-        parsed = binary ? parser.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(),
-                                                      static_cast<unsigned int>(bytes.size()), baseDir)
-                        : parser.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(bytes.data()),
-                                                     static_cast<unsigned int>(bytes.size()), baseDir);
-    } catch (const std::exception& e) {
-        // nlohmann::json throws for numbers it cannot hold (1e309) in some tinygltf paths.
-        throw SceneError(path + ": " + e.what());
+    auto parse = [&](const std::vector<unsigned char>& file) {
+        model = tinygltf::Model();
+        deferred.encoded.clear();
+        error.clear();
+        warning.clear();
+        try {
+            return binary ? parser.LoadBinaryFromMemory(&model, &error, &warning, file.data(),
+                                                        static_cast<unsigned int>(file.size()), baseDir)
+                          : parser.LoadASCIIFromString(&model, &error, &warning, reinterpret_cast<const char*>(file.data()),
+                                                       static_cast<unsigned int>(file.size()), baseDir);
+        } catch (const std::exception& e) {
+            // nlohmann::json throws for numbers it cannot hold (1e309) in some tinygltf paths.
+            throw SceneError(path + ": " + e.what());
+        }
+    };
+    bool parsed = parse(bytes);
+    if (!parsed) {
+        // Valid glTF tinygltf refuses: once more with stand-ins for what it cannot read.
+        const std::string firstError = error;
+        std::vector<std::string> notes;
+        std::vector<unsigned char> retried = standInsForUnreadableObjects(bytes, binary, notes);
+        if (!retried.empty() && parse(retried)) {
+            parsed = true;
+            bytes = std::move(retried);
+            if (options.warnings) {
+                for (const std::string& note : notes) options.warnings->push_back(path + ": " + note);
+            }
+        } else {
+            error = firstError;
+        }
     }
     if (!parsed) {
         std::string reason = diagnoseParseFailure(bytes, binary);

@@ -191,17 +191,33 @@ TEST(GltfErrors, TruncatedGlb) {
     expectError(dir.file("chunk.glb"), {"chunk.glb", "GLB chunk 1", "run past the end"});
 }
 
-TEST(GltfErrors, UnsupportedRequiredExtensionAndBufferWithoutUri) {
+TEST(GltfErrors, UnsupportedRequiredExtension) {
     TempDir dir;
     GltfFile basisu = quadFile();
     basisu.doc["extensionsUsed"] = {"KHR_texture_basisu"};
     basisu.doc["extensionsRequired"] = {"KHR_texture_basisu"};
     expectError(basisu.write(dir, "basisu"), {"extensionsRequired", "KHR_texture_basisu is not supported"});
+}
+
+// A buffer without uri in a .gltf is valid glTF (the validator passes it: its data is the
+// application's); what is drawn from it reads zeros, and a warning names the buffer.
+TEST(GltfErrors, BufferWithoutUriReadsZerosWithAWarning) {
+    TempDir dir;
     GltfFile bufferless = quadFile();
     const std::string path = bufferless.write(dir, "bufferless");
     bufferless.doc["buffers"][0].erase("uri");
     std::ofstream(path) << bufferless.doc.dump();
-    expectError(path, {"bufferless.gltf", "buffers[0].uri", "missing"});
+    std::vector<std::string> warnings;
+    GltfLoadOptions options;
+    options.generateLods = false;
+    options.warnings = &warnings;
+    const Scene scene = loadGltf(path, options);
+    ASSERT_EQ(scene.objects.size(), 1u);
+    for (const glm::vec3& p : scene.objects[0].levels[0].meshes.at(0).positions) EXPECT_EQ(p, glm::vec3(0.0f));
+    ASSERT_EQ(warnings.size(), 1u) << ::testing::PrintToString(warnings);
+    EXPECT_NE(warnings[0].find("bufferless.gltf: buffers[0] has no uri and the file holds no data for it"),
+              std::string::npos)
+        << warnings[0];
 }
 
 TEST(GltfErrors, MissingBaseColorImage) {
