@@ -22,6 +22,7 @@ struct GpuMesh {
     GLsizei indexCount = 0;
     int material = -1;
     bool hasTangents = false;  // PBR: a normal map needs a tangent frame
+    bool flatNormals = false;  // scenes::Mesh::flatNormals: each triangle's own normal
 };
 // [object][level][mesh], as Scene::objects.
 using GpuMeshes = std::vector<std::vector<std::vector<GpuMesh>>>;

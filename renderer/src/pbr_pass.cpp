@@ -58,6 +58,7 @@ PbrPass::Program PbrPass::linkPbrProgram(const char* fragmentSource) {
                         at("uEmissive"),        at("uAlphaMode"),           at("uAlphaCutoff"),
                         at("uUnlit"),           at("uCameraPosition"),      at("uToLight"),
                         at("uKeyIrradiance"),   at("uSkyIrradiance"),       at("uGroundIrradiance")};
+    program.uniforms.flatNormals = at("uFlatNormals");
     program.drawIndex = at("uDrawIndex");
     glUseProgram(program.id);
     const char* samplerNames[shaders::kTextureUnits] = {"uBaseColorMap", "uMetallicRoughnessMap", "uNormalMap",
@@ -248,6 +249,7 @@ void PbrPass::drawObject(std::size_t o, int level, const glm::mat4& viewProjecti
             mesh.material >= 0 ? mScene.materials[std::size_t(mesh.material)] : kDefaultMaterial;
         if ((material.alphaMode == scenes::AlphaMode::Blend) != blendPass) continue;
         bindMaterial(material, mesh.hasTangents);
+        glUniform1i(mActive->uniforms.flatNormals, mesh.flatNormals ? 1 : 0);
         if (mActive->drawIndex >= 0) glUniform1ui(mActive->drawIndex, GLuint(mDrawIndex++));
         glBindVertexArray(mesh.vertexArray);
         glDrawElements(GL_TRIANGLES, mesh.indexCount, GL_UNSIGNED_INT, nullptr);

@@ -58,6 +58,7 @@ private:
         GLint baseColorFactor = -1, metallicFactor = -1, roughnessFactor = -1, normalScale = -1, occlusionStrength = -1;
         GLint emissive = -1, alphaMode = -1, alphaCutoff = -1, unlit = -1;
         GLint cameraPosition = -1, toLight = -1, keyIrradiance = -1, skyIrradiance = -1, groundIrradiance = -1;
+        GLint flatNormals = -1;  // after the others: linkPbrProgram fills them in this order
     };
 
     struct Program {

@@ -107,7 +107,7 @@ struct Renderer::Impl {
     std::unique_ptr<Platform> platform;
     GLuint program = 0, framebuffer = 0, colorBuffer = 0, depthBuffer = 0;
     GLint uModelViewProjection = -1, uNormalMatrix = -1, uBaseColor = -1, uHasTexture = -1, uToLight = -1,
-          uAmbient = -1, uTexture = -1, uTransformUv = -1, uUvTransform = -1;
+          uAmbient = -1, uTexture = -1, uTransformUv = -1, uUvTransform = -1, uModel = -1, uFlatNormals = -1;
     std::unique_ptr<PbrPass> pbrPass;  // Shading::Pbr only
     std::vector<GLuint> textures;      // Lambert: per scene texture, read as stored
     gl::GpuMeshes meshes;
@@ -136,6 +136,8 @@ struct Renderer::Impl {
         uTexture = glGetUniformLocation(program, "uBaseColorTexture");
         uTransformUv = glGetUniformLocation(program, "uTransformUv");
         uUvTransform = glGetUniformLocation(program, "uUvTransform");
+        uModel = glGetUniformLocation(program, "uModel");
+        uFlatNormals = glGetUniformLocation(program, "uFlatNormals");
     }
 
     void createFramebuffer() {
@@ -175,6 +177,7 @@ struct Renderer::Impl {
                     gpu.material = mesh.material;
                     gpu.indexCount = static_cast<GLsizei>(mesh.indices.size());
                     gpu.hasTangents = mesh.tangents.size() == mesh.positions.size();
+                    gpu.flatNormals = mesh.flatNormals;
                     // Lambert reads position, normal and UV; PBR every attribute (defaults: white, no tangent).
                     const int floatsPerVertex = isPbr() ? 18 : 8;
                     interleaved.clear();
@@ -311,6 +314,7 @@ struct Renderer::Impl {
             const glm::mat4 mvp = viewProjection * model;
             const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
             glUniformMatrix4fv(uModelViewProjection, 1, GL_FALSE, glm::value_ptr(mvp));
+            glUniformMatrix4fv(uModel, 1, GL_FALSE, glm::value_ptr(model));
             glUniformMatrix3fv(uNormalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
             for (const gl::GpuMesh& mesh : meshes[o][level]) {
                 glm::vec4 color(1.0f);
@@ -327,6 +331,7 @@ struct Renderer::Impl {
                     }
                 }
                 glUniform1i(uTransformUv, transformUv ? 1 : 0);
+                glUniform1i(uFlatNormals, mesh.flatNormals ? 1 : 0);
                 glUniform4fv(uBaseColor, 1, glm::value_ptr(color));
                 glUniform1i(uHasTexture, texture >= 0 ? 1 : 0);
                 glBindTexture(GL_TEXTURE_2D, texture >= 0 ? textures[texture] : 0);

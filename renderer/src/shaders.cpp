@@ -4,6 +4,18 @@
 
 namespace lodopt::renderer::shaders {
 
+// The triangle's own normal (glTF's flat normals for a primitive without NORMAL), from the
+// screen-space derivatives of the world position: their cross product faces the viewer (window
+// x right, y up), so the geometric normal is that on a front face and its opposite on a back
+// face, where the caller flips it as it flips an interpolated one.
+#define LODOPT_FLAT_NORMAL                                                            \
+    "vec3 flatNormal(vec3 worldPosition) {\n"                                          \
+    "    vec3 face = cross(dFdx(worldPosition), dFdy(worldPosition));\n"               \
+    "    float faceLen = length(face);\n"                                              \
+    "    vec3 towardViewer = faceLen > 1e-30 ? face / faceLen : vec3(0.0, 1.0, 0.0);\n" \
+    "    return gl_FrontFacing ? towardViewer : -towardViewer;\n"                      \
+    "}\n"
+
 // The base color's KHR_texture_transform applies only when it is not the identity, so that every
 // other texture coordinate is the attribute itself, as before the transform was read.
 const char* const kLambertVertex = R"(#version 330 core
@@ -11,14 +23,17 @@ layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec2 aUv;
 uniform mat4 uModelViewProjection;
+uniform mat4 uModel;
 uniform mat3 uNormalMatrix;
 uniform bool uTransformUv;
 uniform mat3 uUvTransform;
 out vec3 vNormal;
+out vec3 vWorldPosition;
 out vec2 vUv;
 void main() {
     gl_Position = uModelViewProjection * vec4(aPosition, 1.0);
     vNormal = uNormalMatrix * aNormal;
+    vWorldPosition = (uModel * vec4(aPosition, 1.0)).xyz;
     vUv = uTransformUv ? (uUvTransform * vec3(aUv, 1.0)).xy : aUv;
 }
 )";
@@ -26,16 +41,19 @@ void main() {
 // Lambert + ambient, lit from both sides: leaf cards and open meshes have no back side.
 const char* const kLambertFragment = R"(#version 330 core
 in vec3 vNormal;
+in vec3 vWorldPosition;
 in vec2 vUv;
 uniform vec4 uBaseColor;
 uniform sampler2D uBaseColorTexture;
 uniform bool uHasTexture;
+uniform bool uFlatNormals;
 uniform vec3 uToLight;
 uniform float uAmbient;
 out vec4 fragColor;
+)" LODOPT_FLAT_NORMAL R"(
 void main() {
     float len = length(vNormal);
-    vec3 n = len > 1e-20 ? vNormal / len : vec3(0.0, 1.0, 0.0);
+    vec3 n = uFlatNormals ? flatNormal(vWorldPosition) : (len > 1e-20 ? vNormal / len : vec3(0.0, 1.0, 0.0));
     if (!gl_FrontFacing) n = -n;
     float diffuse = max(dot(n, uToLight), 0.0);
     vec4 color = uBaseColor;
@@ -102,6 +120,7 @@ uniform vec3 uEmissive;       // emissiveFactor x emissiveStrength
 uniform int uAlphaMode;       // 0 opaque, 1 mask, 2 blend
 uniform float uAlphaCutoff;
 uniform bool uUnlit;
+uniform bool uFlatNormals;
 uniform float uMirror;        // -1 when the model transform mirrors (flips the bitangent)
 uniform vec3 uCameraPosition;
 uniform vec3 uToLight;
@@ -130,7 +149,7 @@ uniform uint uDrawIndex;
 #endif
 
 const float kPi = 3.14159265358979;
-
+)" LODOPT_FLAT_NORMAL R"(
 vec4 sampleMap(sampler2D map, int index) {
     vec2 uv = uMapUvSet[index] == 1 ? vUv1 : vUv0;
     return texture(map, (uMapTransform[index] * vec3(uv, 1.0)).xy);
@@ -157,6 +176,8 @@ vec3 encodeSrgb(vec3 linear) {
 }
 
 void main() {
+    // Before any discard: derivatives need the whole pixel quad.
+    vec3 faceNormal = uFlatNormals ? flatNormal(vWorldPosition) : vec3(0.0);
     vec4 base = uBaseColorFactor * vColor;
     if (uMapPresent[0] != 0) base *= sampleMap(uBaseColorMap, 0);
     if (uAlphaMode == 1 && base.a < uAlphaCutoff) discard;
@@ -166,7 +187,7 @@ void main() {
         color = base.rgb;
     } else {
         float len = length(vNormal);
-        vec3 n = len > 1e-20 ? vNormal / len : vec3(0.0, 1.0, 0.0);
+        vec3 n = uFlatNormals ? faceNormal : (len > 1e-20 ? vNormal / len : vec3(0.0, 1.0, 0.0));
         if (uMapPresent[2] != 0) {
             vec3 t = vTangent.xyz - n * dot(n, vTangent.xyz);
             float tLen = length(t);

@@ -115,7 +115,11 @@ json meshJson(const std::string& name, const std::vector<Mesh>& meshes, BinaryWr
         json attributes;
         attributes["POSITION"] = writer.addAccessor(mesh.positions.data(), mesh.positions.size(), kFloat, "VEC3", 3,
                                                     kArrayBuffer, {{"min", vec3(low)}, {"max", vec3(high)}});
-        attributes["NORMAL"] = writer.addAccessor(mesh.normals.data(), mesh.normals.size(), kFloat, "VEC3", 3, kArrayBuffer);
+        // Without NORMAL a reader draws flat normals (and ignores TANGENT), as lodopt did.
+        if (!mesh.flatNormals) {
+            attributes["NORMAL"] =
+                writer.addAccessor(mesh.normals.data(), mesh.normals.size(), kFloat, "VEC3", 3, kArrayBuffer);
+        }
         if (!mesh.uvs.empty()) {
             attributes["TEXCOORD_0"] = writer.addAccessor(mesh.uvs.data(), mesh.uvs.size(), kFloat, "VEC2", 2, kArrayBuffer);
         }
@@ -123,7 +127,7 @@ json meshJson(const std::string& name, const std::vector<Mesh>& meshes, BinaryWr
             attributes["TEXCOORD_1"] =
                 writer.addAccessor(mesh.uvs1.data(), mesh.uvs1.size(), kFloat, "VEC2", 2, kArrayBuffer);
         }
-        if (!mesh.tangents.empty()) {
+        if (!mesh.tangents.empty() && !mesh.flatNormals) {
             attributes["TANGENT"] =
                 writer.addAccessor(mesh.tangents.data(), mesh.tangents.size(), kFloat, "VEC4", 4, kArrayBuffer);
         }

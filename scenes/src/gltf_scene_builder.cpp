@@ -235,7 +235,10 @@ void SceneBuilder::appendMesh(int meshIndex, const glm::mat4& relative, Level& l
             for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
         }
         if (decoded->normals.empty()) {
+            // Flat normals; the file's tangents, if any, are to be ignored (spec §3.7.2.1).
             computeNormals(mesh);
+            mesh.flatNormals = true;
+            mesh.tangents.clear();
         } else {
             mesh.normals.resize(decoded->normals.size());
             for (std::size_t v = 0; v < decoded->normals.size(); ++v) {

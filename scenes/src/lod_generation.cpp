@@ -53,6 +53,7 @@ float simplifyMesh(const Mesh& source, float ratio, Mesh& out) {
     assert(source.colors.empty() || source.colors.size() == source.positions.size());
     out = Mesh();
     out.material = source.material;
+    out.flatNormals = source.flatNormals;
     const std::size_t triangles = source.indices.size() / 3;
     if (ratio >= 1.0f || triangles == 0) {
         out = source;

@@ -236,6 +236,73 @@ TEST(PbrConformance, SingleSidedMaterialsCullBackFaces) {
     EXPECT_EQ(covered(scene, behind), covered(scene, front));
 }
 
+// A primitive without NORMAL is drawn with each triangle's own normal (spec §3.7.2.1), in both
+// shadings: a welded sphere flagged flatNormals renders as the same sphere unwelded with explicit
+// face normals (within 2 levels but at a few silhouette pixels), and unlike its smooth self.
+TEST(PbrConformance, FlatNormalsAreEachTrianglesOwn) {
+    scenes::MeshBuilder builder(0);
+    builder.addEllipsoid({0.0f, 0.0f, 0.0f}, {1.0f, 0.8f, 1.0f}, 10, 6);
+    const scenes::Mesh smooth = builder.finish();
+    scenes::Mesh flagged = smooth;
+    flagged.flatNormals = true;
+    scenes::Mesh faceted;
+    for (std::size_t i = 0; i + 2 < smooth.indices.size(); i += 3) {
+        const glm::vec3 a = smooth.positions[smooth.indices[i]], b = smooth.positions[smooth.indices[i + 1]],
+                        c = smooth.positions[smooth.indices[i + 2]];
+        const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+        for (const glm::vec3& p : {a, b, c}) {
+            faceted.indices.push_back(std::uint32_t(faceted.positions.size()));
+            faceted.positions.push_back(p);
+            faceted.normals.push_back(n);
+        }
+    }
+    faceted.material = 0;
+    auto sceneWith = [](const scenes::Mesh& mesh) {
+        scenes::Scene scene;
+        scenes::Material material;
+        material.metallicFactor = 0.0f;
+        material.roughnessFactor = 0.8f;
+        scene.materials.push_back(material);
+        scenes::Object object;
+        object.name = "sphere";
+        object.levels.push_back({});
+        object.levels[0].meshes.push_back(mesh);
+        scene.objects.push_back(object);
+        scenes::updateStatistics(scene);
+        return scene;
+    };
+    const scenes::Scene flatScene = sceneWith(flagged), facetedScene = sceneWith(faceted), smoothScene = sceneWith(smooth);
+    scenes::Camera camera;
+    camera.position = {1.5f, 1.8f, 3.0f};
+    for (renderer::Shading shading : {renderer::Shading::Lambert, renderer::Shading::Pbr}) {
+        renderer::RenderSettings settings = pbrSettings(128);
+        settings.shading = shading;
+        auto render = [&](const scenes::Scene& scene) {
+            return renderer::Renderer(scene, settings).render({0}, camera);
+        };
+        const renderer::Frame flat = render(flatScene), explicitFaces = render(facetedScene), smoothed = render(smoothScene);
+        std::size_t covered = 0, unlikeSmooth = 0, offFaces = 0;
+        for (std::size_t i = 0; i < flat.depth.size(); ++i) {
+            if (!(flat.depth[i] < 1.0f)) continue;
+            ++covered;
+            int againstFaces = 0, againstSmooth = 0;
+            for (int c = 0; c < 3; ++c) {
+                againstFaces = std::max(againstFaces, std::abs(flat.rgba[i * 4 + c] - explicitFaces.rgba[i * 4 + c]));
+                againstSmooth = std::max(againstSmooth, std::abs(flat.rgba[i * 4 + c] - smoothed.rgba[i * 4 + c]));
+            }
+            offFaces += againstFaces > 2;
+            unlikeSmooth += againstSmooth > 4;
+        }
+        const char* name = renderer::shadingName(shading);
+        EXPECT_GT(covered, 3000u) << name;
+        // A pixel quad that reaches past a grazing triangle's edge extrapolates its position far
+        // along the plane; its derivatives lose precision there (measured: 1 silhouette pixel of
+        // about 5,000 per shading).
+        EXPECT_LE(offFaces, covered / 500) << name << ": flat normals against explicit face normals";
+        EXPECT_GT(unlikeSmooth, covered / 5) << name << ": flat shading should not look smooth";
+    }
+}
+
 // The layer path stays exact under PBR for opaque and masked objects: the composite of their
 // layers equals the full render, bit for bit (the blended panels are left out).
 TEST(PbrConformance, CompositeOfOpaqueAndMaskedLayersEqualsFullRender) {

@@ -1,6 +1,8 @@
 // exportGltf round trips: load(export(scene)) gives the same objects, levels, statistics,
 // materials, textures, views, camera paths and name, for .gltf and .glb.
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -290,6 +292,40 @@ TEST(GltfExport, SharedModelsRoundTrip) {
         exportGltf(scene, out);
         expectSameScene(scene, loadGltf(out, noGeneration()));
     }
+}
+
+// Fox has no NORMAL: every level of its generated chain is drawn with flat normals, and the
+// export leaves NORMAL (and TANGENT) out, so that a reader, lodopt included, draws it flat again.
+TEST(GltfExport, FlatNormalsSurviveGenerationAndExport) {
+    const std::string fox = testing::sharedDataDir() + "/gltf/models/Fox/Fox.glb";
+    if (!std::filesystem::exists(fox)) GTEST_SKIP() << fox << " is absent (shared test data)";
+    TempDir dir;
+    const Scene scene = loadGltf(fox);
+    ASSERT_EQ(scene.objects.size(), 1u);
+    ASSERT_GE(scene.objects[0].levels.size(), 3u);
+    auto everyMeshFlat = [](const Scene& s) {
+        for (const Object& object : s.objects) {
+            for (const Level& level : object.levels) {
+                for (const Mesh& mesh : level.meshes) {
+                    if (!mesh.flatNormals || mesh.normals.size() != mesh.positions.size()) return false;
+                }
+            }
+        }
+        return true;
+    };
+    EXPECT_TRUE(everyMeshFlat(scene));
+    exportGltf(scene, dir.file("fox.gltf"));
+    const std::string json = [&] {
+        std::ifstream in(dir.file("fox.gltf"));
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    }();
+    EXPECT_EQ(json.find("\"NORMAL\""), std::string::npos);
+    const Scene reloaded = loadGltf(dir.file("fox.gltf"), noGeneration());
+    EXPECT_TRUE(everyMeshFlat(reloaded));
+    expectSameScene(scene, reloaded);
+    // A file with normals keeps them.
+    const Scene box = loadGltf(testing::sharedDataDir() + "/gltf/render-tests/BoxTextured/glTF/BoxTextured.gltf");
+    EXPECT_FALSE(box.objects.at(0).levels.at(0).meshes.at(0).flatNormals);
 }
 
 }  // namespace

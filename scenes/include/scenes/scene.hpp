@@ -109,6 +109,10 @@ struct Mesh {
     std::vector<glm::vec4> colors;       // COLOR_0, linear RGBA
     std::vector<std::uint32_t> indices;  // 3 per triangle, each < positions.size()
     int material = -1;                   // index into Scene::materials, -1 for the default
+    // The file gave no NORMAL: drawn with each triangle's own normal (glTF 2.0 §3.7.2.1: flat
+    // normals). `normals` then holds smooth ones, which keep the vertices welded for LOD
+    // generation; the exporter writes none.
+    bool flatNormals = false;
 };
 
 struct Bounds {
