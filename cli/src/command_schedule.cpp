@@ -23,6 +23,7 @@
 #include "scenes/builtin.hpp"
 #include "schedule_checkpoint.hpp"
 #include "schedule_common.hpp"
+#include "schedule_rows.hpp"
 #include "scheduler/coefficients.hpp"
 #include "scheduler/measurement.hpp"
 #include "scheduler/scheduler.hpp"
@@ -111,87 +112,6 @@ double fitnessOf(const renderer::Frame& frame, const renderer::Frame& reference,
     const metrics::ImageView truth =
         metrics::makeImageView(reference.rgba.data(), reference.width, reference.height, 4);
     return metrics::evaluate(candidate, truth, p).fitness;
-}
-
-struct FrameRow {
-    int frame = 0;
-    double timeSeconds = 0.0;
-    double decisionMicroseconds = 0.0;
-    double predictedMs = 0.0;
-    double finestPredictedMs = 0.0;
-    double baselinePredictedMs = 0.0;
-    double exactPredictedMs = NAN;
-    double measuredMs = NAN;
-    double baselineMeasuredMs = NAN;
-    double fitness = NAN;
-    double baselineFitness = NAN;
-    double feedbackScale = 1.0;
-    scheduler::FrameDecision decision;
-    std::vector<int> histogram;
-};
-
-std::string csvNumber(double value) {
-    if (std::isnan(value)) return "";
-    std::ostringstream out;
-    out << std::setprecision(8) << value;
-    return out.str();
-}
-
-std::string framesCsv(const std::vector<FrameRow>& rows, int maxLevels) {
-    std::ostringstream csv;
-    csv << "frame,time_s,decision_us,predicted_ms,measured_ms,finest_predicted_ms,baseline_predicted_ms,"
-           "baseline_measured_ms,exact_predicted_ms,budget_reachable,budget_met,fitness,baseline_fitness,visible,"
-           "culled,dropped,drawn,"
-           "protected_lowered,forced_switches,switches,held,feedback_scale";
-    for (int l = 0; l < maxLevels; ++l) csv << ",level_" << l;
-    csv << "\n";
-    for (const FrameRow& r : rows) {
-        const scheduler::FrameDecision& d = r.decision;
-        const int drawn = d.visibleObjects - d.droppedObjects;
-        csv << r.frame << ',' << csvNumber(r.timeSeconds) << ',' << csvNumber(r.decisionMicroseconds) << ','
-            << csvNumber(r.predictedMs) << ',' << csvNumber(r.measuredMs) << ',' << csvNumber(r.finestPredictedMs)
-            << ',' << csvNumber(r.baselinePredictedMs) << ',' << csvNumber(r.baselineMeasuredMs) << ','
-            << csvNumber(r.exactPredictedMs) << ',' << int(d.budgetReachable) << ',' << int(d.budgetMet) << ','
-            << csvNumber(r.fitness) << ',' << csvNumber(r.baselineFitness) << ',' << d.visibleObjects << ','
-            << d.culledObjects << ',' << d.droppedObjects << ',' << drawn << ',' << d.protectedLowered << ','
-            << d.forcedSwitches << ',' << d.switches << ',' << d.heldObjects << ',' << csvNumber(r.feedbackScale);
-        for (int count : r.histogram) csv << ',' << count;
-        csv << "\n";
-    }
-    return csv.str();
-}
-
-// Share of `rows` (those `counted`) whose `value` lies within ±10% of the budget, or at most 10%
-// above it.
-struct BudgetShares {
-    int frames = 0;
-    double within10 = 0.0;
-    double atMost110 = 0.0;
-};
-template <typename Value, typename Counted>
-BudgetShares budgetShares(const std::vector<FrameRow>& rows, double budget, Value value, Counted counted) {
-    BudgetShares shares;
-    int within = 0, atMost = 0;
-    for (const FrameRow& r : rows) {
-        const double v = value(r);
-        if (!counted(r) || std::isnan(v)) continue;
-        ++shares.frames;
-        if (std::abs(v - budget) <= 0.1 * budget) ++within;
-        if (v <= 1.1 * budget) ++atMost;
-    }
-    if (shares.frames > 0) {
-        shares.within10 = double(within) / shares.frames;
-        shares.atMost110 = double(atMost) / shares.frames;
-    }
-    return shares;
-}
-
-nlohmann::json sharesJson(const BudgetShares& s) {
-    return {{"frames", s.frames}, {"within_10_percent", s.within10}, {"at_most_110_percent", s.atMost110}};
-}
-
-nlohmann::json spreadJson(const Spread& s) {
-    return {{"median", s.median}, {"p90", s.p90}, {"max", s.max}, {"mean", s.mean}};
 }
 
 // The measurement ceiling (scheduler/measurement.hpp): the first, middle and last rows'

@@ -14,47 +14,17 @@
 #include "evaluation/evaluation.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
+#include "walk_helpers.hpp"
 
 using namespace lodopt;
+using namespace lodopt::test_walks;
 
 namespace {
-
-metrics::ImageView viewOf(const renderer::Frame& frame) {
-    return metrics::makeImageView(frame.rgba.data(), frame.width, frame.height, 4);
-}
 
 std::vector<const renderer::Layer*> layersOf(const evaluation::ViewSetup& setup, const scenes::Combination& levels) {
     std::vector<const renderer::Layer*> layers;
     for (std::size_t o = 0; o < levels.size(); ++o) layers.push_back(&setup.layer(int(o), levels[o]));
     return layers;
-}
-
-renderer::Frame freshComposite(const evaluation::ViewSetup& setup, const optimizer::Combination& combination) {
-    renderer::Frame frame;
-    renderer::composite(layersOf(setup, setup.toScene(combination)), setup.width(), setup.height(), setup.clearColor(),
-                        frame);
-    return frame;
-}
-
-void expectSameScore(const optimizer::Score& a, const optimizer::Score& b, const std::string& what) {
-    EXPECT_EQ(a.fitness, b.fitness) << what;
-    ASSERT_EQ(a.componentCount, b.componentCount) << what;
-    for (int c = 0; c < a.componentCount; ++c) EXPECT_EQ(a.components[c], b.components[c]) << what << " component " << c;
-}
-
-std::vector<optimizer::Combination> randomWalk(const std::vector<int>& counts, int steps, unsigned seed) {
-    std::mt19937 random(seed);
-    std::vector<optimizer::Combination> walk;
-    optimizer::Combination current(counts.size(), 0);
-    for (int k = 0; k < steps; ++k) {
-        const int changes = 1 + int(random() % 3);
-        for (int c = 0; c < changes; ++c) {
-            const std::size_t v = random() % counts.size();
-            current[v] = int(random() % counts[v]);
-        }
-        walk.push_back(current);
-    }
-    return walk;
 }
 
 // Whether a layer of `layers` draws blended coverage at (x, y).
