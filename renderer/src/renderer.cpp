@@ -484,13 +484,13 @@ Layer Renderer::renderLayer(int object, int level, const scenes::Camera& camera)
         mImpl->draw(alone, camera, &bound, PbrPass::Surfaces::Blended, Impl::Clear::ColorToTransparent);
         mImpl->readBackRect(bound, blendColor, depth);
         fragments = mImpl->listBlendedFragments(alone, camera, bound);
-        // Coverage: the nearer of the opaque surface and the nearest blended fragment.
+        // Coverage: the nearer of the opaque surface and the nearest blended fragment. A listed
+        // fragment passed GL_LESS against depth 1 or nearer, so its depth is below 1, and 1
+        // marks "none yet" in `farthest`.
         depth = opaqueDepth;
         farthest.assign(depth.size(), 1.0f);
-        std::vector<float> nearest(depth.size(), 1.0f);
         for (const PbrPass::ListedFragment& fragment : fragments) {
             const std::size_t at = std::size_t(fragment.pixel);  // re-indexed into the bound
-            nearest[at] = std::min(nearest[at], fragment.depth);
             farthest[at] = farthest[at] == 1.0f ? fragment.depth : std::max(farthest[at], fragment.depth);
             depth[at] = std::min(depth[at], fragment.depth);
         }
