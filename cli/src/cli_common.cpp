@@ -39,6 +39,11 @@ std::vector<int> parseIntList(const std::string& text, const std::string& what) 
     return values;
 }
 
+void addSceneSeedOption(CLI::App& command, std::uint32_t& sceneSeed) {
+    command.add_option("--scene-seed", sceneSeed, "Variant of a built-in scene (not the search's seed)")
+        ->capture_default_str();
+}
+
 void addShadingOption(CLI::App& command, std::string& shading) {
     command
         .add_option("--shading", shading,

@@ -59,6 +59,9 @@ int firstBestAbove(double floor, const std::vector<double>& scores, double margi
 void parseSize(const std::string& text, int& width, int& height);
 // --shading lambert|pbr (docs/renderer.md "Shading"); CLI11 refuses any other value.
 void addShadingOption(CLI::App& command, std::string& shading);
+// --scene-seed: which variant of a built-in scene a command uses, apart from any search seed, so
+// that every seed of a search searches the same scene.
+void addSceneSeedOption(CLI::App& command, std::uint32_t& sceneSeed);
 
 // Each command adds itself as a subcommand; its callback throws on failure and main maps
 // the exception to an exit code (UsageError, scenes::SceneError → 2; anything else → 1).

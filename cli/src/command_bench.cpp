@@ -91,6 +91,7 @@ double defaultBudget(const ViewContext& context) {
 nlohmann::json checkpointIdentity(const BenchOptions& bench) {
     const OptimizeOptions& o = bench.optimize;
     return {{"scene", o.scene},
+            {"scene-seed", o.sceneSeed},
             {"view", o.view},
             {"seed", o.seed},
             {"budget-ms", o.budgetMs > 0.0 ? nlohmann::json(o.budgetMs) : nlohmann::json()},
@@ -311,6 +312,7 @@ void runBench(const BenchOptions& bench) {
     nlohmann::json document = {
         {"format", "lodopt-bench/1"},
         {"scene", prepared.scene.name},
+        {"scene_seed", options.sceneSeed},
         {"view", context.setup->camera().name},
         {"size", options.size},
         {"shading", options.shading},
@@ -406,7 +408,8 @@ void addBenchCommand(CLI::App& app) {
     command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();
     command->add_option("--profile", o.profile, "Device profile from 'lodopt calibrate' (default: shipped)");
     command->add_option("--model", o.model, "Time model in the profile (default: the profile's default)");
-    command->add_option("--seed", o.seed, "Scene seed and seed of the sampled candidates")->capture_default_str();
+    command->add_option("--seed", o.seed, "Seed of the sampled candidates and time-model frames")->capture_default_str();
+    addSceneSeedOption(*command, o.sceneSeed);
     command->add_option("--algos", bench->algorithms, "Comma-separated algorithms")->capture_default_str();
     command->add_option("--evals", bench->budgets, "Comma-separated evaluation budgets")->capture_default_str();
     command->add_option("--seeds", bench->seeds, "Seeds 1..N per stochastic algorithm and budget")

@@ -355,7 +355,7 @@ void addCalibrateCommand(CLI::App& app) {
         ->check(CLI::Range(1, 1000000));
     command->add_option("--seed", options->seed, "Seed of the sampled combinations and viewpoints")
         ->capture_default_str();
-    command->add_option("--scene-seed", options->sceneSeed, "Seed of a built-in scene")->capture_default_str();
+    addSceneSeedOption(*command, options->sceneSeed);
     command->add_option("--size", options->size, "WIDTHxHEIGHT of the timed frames")->capture_default_str();
     addShadingOption(*command, options->shading);
     command->add_option("--jitter", options->jitter, "Extra viewpoints around each named view")

@@ -109,7 +109,7 @@ std::string runKey(const std::string& algorithm, std::uint64_t seed) {
 // too: runs are matched by algorithm and seed.
 nlohmann::json checkpointIdentity(const OptimizeOptions& options, std::int64_t evaluations) {
     return {{"scene", options.scene},
-            {"seed", options.seed},
+            {"scene-seed", options.sceneSeed},
             {"view", options.view},
             {"budget-ms", options.budgetMs},
             {"evals", evaluations},
@@ -178,6 +178,7 @@ void addCompareCommand(CLI::App& app) {
     auto output = std::make_shared<OutputOptions>();
     CLI::App* command = app.add_subcommand("compare", "Compare algorithms over seeds at equal evaluation budgets");
     addOptimizeOptions(*command, *options);
+    command->remove_option(command->get_option("--seed"));  // the runs take seeds 1..--seeds
     command->add_option("--algos", *algorithms, "Comma-separated algorithms")->capture_default_str();
     command->add_option("--seeds", *seeds, "Seeds 1..N per algorithm")->check(CLI::Range(1, 1000))->capture_default_str();
     command->add_option("--evals", *evaluations, "Evaluation budget of every run")

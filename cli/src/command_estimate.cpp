@@ -122,7 +122,7 @@ void addEstimateCommand(CLI::App& app) {
         ->add_option("--shading", options->shading,
                      "lambert or pbr: how the frame is drawn (default: as the profile was measured)")
         ->check(CLI::IsMember({"lambert", "pbr"}));
-    command->add_option("--seed", options->seed, "Seed of a built-in scene")->capture_default_str();
+    command->add_option("--scene-seed,--seed", options->seed, "Variant of a built-in scene")->capture_default_str();
     command->add_flag("--no-renderer-check", options->noRendererCheck,
                       "Do not open an OpenGL context to compare the renderer with the profile's");
     addOutputOptions(*command, options->output);

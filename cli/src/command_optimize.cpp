@@ -37,8 +37,9 @@ void addOptimizeOptions(CLI::App& command, OptimizeOptions& options) {
     command.add_option("--budget-ms", options.budgetMs, "Predicted render-time budget in milliseconds")
         ->required()
         ->check(CLI::PositiveNumber);
-    command.add_option("--seed", options.seed, "Random seed (results are deterministic for a seed)")
+    command.add_option("--seed", options.seed, "Seed of the search (results are deterministic for a seed)")
         ->capture_default_str();
+    addSceneSeedOption(command, options.sceneSeed);
     command.add_option("--size", options.size, "Render size WIDTHxHEIGHT")->capture_default_str();
     addShadingOption(command, options.shading);
     command.add_option("--eval", options.evalPath, "Evaluation path: fast (layers) or full (render each)")

@@ -32,7 +32,7 @@ void addRenderCommand(CLI::App& app) {
     addShadingOption(*command, options->shading);
     command->add_option("--out", options->out, "Color image: .png, .jpg or .ppm")->capture_default_str();
     command->add_option("--depth-out", options->depthOut, "Also write depth as floats: .exr or .pfm");
-    command->add_option("--seed", options->seed, "Seed of a built-in scene");
+    command->add_option("--scene-seed,--seed", options->seed, "Variant of a built-in scene");
     command->add_flag("--time", options->time, "Also measure the render time (median of --repeats)");
     command->add_option("--repeats", options->repeats, "Timed repeats for --time")->check(CLI::Range(1, 1000));
     addOutputOptions(*command, options->output);

@@ -93,7 +93,7 @@ void addSceneCommand(CLI::App& app) {
     auto info = std::make_shared<InfoOptions>();
     CLI::App* infoCommand = scene->add_subcommand("info", "Objects, levels and per-level statistics");
     infoCommand->add_option("scene", info->scene, "Built-in scene name or glTF/GLB path")->required();
-    infoCommand->add_option("--seed", info->seed, "Seed of a built-in scene");
+    infoCommand->add_option("--scene-seed,--seed", info->seed, "Variant of a built-in scene");
     addOutputOptions(*infoCommand, info->output);
     infoCommand->callback([info] {
         scenes::Scene loaded = scenes::loadScene(info->scene, info->seed);
@@ -110,7 +110,7 @@ void addSceneCommand(CLI::App& app) {
     CLI::App* exportCommand = scene->add_subcommand("export", "Write a scene as glTF 2.0 with MSFT_lod");
     exportCommand->add_option("scene", exportOptions->scene, "Built-in scene name or glTF/GLB path")->required();
     exportCommand->add_option("out", exportOptions->out, "Output .gltf or .glb")->required();
-    exportCommand->add_option("--seed", exportOptions->seed, "Seed of a built-in scene");
+    exportCommand->add_option("--scene-seed,--seed", exportOptions->seed, "Variant of a built-in scene");
     addOutputOptions(*exportCommand, exportOptions->output);
     exportCommand->callback([exportOptions] {
         const std::string& out = exportOptions->out;

@@ -448,7 +448,7 @@ void addScheduleCommand(CLI::App& app) {
     auto output = std::make_shared<OutputOptions>();
     CLI::App* command = app.add_subcommand("schedule", "Real-time LOD scheduling along a camera path");
     command->add_option("--scene", options->scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
-    command->add_option("--scene-seed", options->sceneSeed, "Seed of a built-in scene")->capture_default_str();
+    addSceneSeedOption(*command, options->sceneSeed);
     command->add_option("--path", options->path,
                         "Camera path: a name in the scene or a JSON file (default: the scene's first)");
     command->add_option("--budget-ms", options->budgetMs, "Frame-time budget in milliseconds")

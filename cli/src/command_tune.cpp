@@ -75,6 +75,7 @@ struct TuneView {
 nlohmann::json settingsSignature(const TuneOptions& o) {
     const OptimizeOptions& p = o.optimize;
     return {{"scene", p.scene},
+            {"scene-seed", p.sceneSeed},
             {"seed", p.seed},
             {"size", p.size},
             {"shading", p.shading},
@@ -423,6 +424,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json report = {
         {"scene", prepared.scene.name},
+        {"scene_seed", options.optimize.sceneSeed},
         {"budget_ms", options.optimize.budgetMs},
         {"size", options.optimize.size},
         {"shading", options.optimize.shading},
@@ -531,6 +533,7 @@ void addTuneCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--seed", o.seed, "Seed of the viewpoints, the optimizer and the search")
         ->capture_default_str();
+    addSceneSeedOption(*command, o.sceneSeed);
     command->add_option("--size", o.size, "Render size WIDTHxHEIGHT")->capture_default_str();
     addShadingOption(*command, o.shading);
     command->add_option("--threads", o.threads, "Evaluation threads")->check(CLI::Range(1, 256));

@@ -53,7 +53,7 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
         prepared.metrics.boundaryEntropyWeight = parsed[1];
         prepared.metrics.informationEntropyWeight = parsed[2];
     }
-    prepared.scene = scenes::loadScene(options.scene, std::uint32_t(options.seed));
+    prepared.scene = scenes::loadScene(options.scene, options.sceneSeed);
     if (options.view == "all") {
         for (std::size_t v = 0; v < prepared.scene.views.size(); ++v) prepared.views.push_back(int(v));
     } else {
@@ -265,6 +265,7 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
         {"seeded_from",
          isSwarmAlgorithm(algorithm) ? nlohmann::json(seedAlgorithms(options.seedFrom)) : nlohmann::json::array()},
         {"seed", seed},
+        {"scene_seed", options.sceneSeed},
         {"fill_probability",
          isSwarmAlgorithm(algorithm) ? nlohmann::json(effectiveFillProbability(options)) : nlohmann::json(nullptr)},
         {"eval_path", options.evalPath},

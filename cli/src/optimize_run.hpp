@@ -27,7 +27,8 @@ struct OptimizeOptions {
     std::string view = "overview";
     std::string algorithm = "gapso";
     double budgetMs = 0.0;
-    std::uint64_t seed = 1;
+    std::uint64_t seed = 1;       // the search's (and a command's sampling); never the scene's
+    std::uint32_t sceneSeed = 1;  // a built-in scene's variant (--scene-seed)
     std::string size = "512x512";
     std::string shading = renderer::shadingName(renderer::kDefaultShading);  // renderer::Shading by name
     std::string evalPath = "fast";

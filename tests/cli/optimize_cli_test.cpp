@@ -141,6 +141,26 @@ TEST_F(OptimizeCli, BadOptionsAreUsageErrors) {
     EXPECT_EQ(runLodopt("optimize --budget-ms 4 --fill -0.1 --out " + (dir / "x").string()).exitCode, 2);
 }
 
+// --seed seeds the search only: every search seed searches the same harbor (the same reference,
+// so screensize, which draws no random number, scores the same); --scene-seed picks the variant.
+TEST_F(OptimizeCli, SearchSeedNeverChangesTheScene) {
+    const std::string common = " --scene harbor --size 128x128 --quiet --budget-ms 1.5 --algo screensize";
+    auto fitnessWith = [&](const std::string& options) {
+        const std::filesystem::path out = dir / "seeds";
+        const CommandResult run = runLodopt("optimize" + common + options + " --out " + out.string());
+        EXPECT_EQ(run.exitCode, 0) << options << "\n" << run.output;
+        const nlohmann::json result = readJson(out / "result.json");
+        return std::make_pair(result["fitness"].get<double>(), result["scene_seed"].get<int>());
+    };
+    const auto first = fitnessWith(" --seed 1");
+    EXPECT_EQ(first.second, 1);
+    EXPECT_EQ(fitnessWith(" --seed 4"), first);
+    EXPECT_EQ(fitnessWith(" --seed 5"), first);
+    const auto otherHarbor = fitnessWith(" --scene-seed 2");
+    EXPECT_EQ(otherHarbor.second, 2);
+    EXPECT_NE(otherHarbor.first, first.first) << "--scene-seed should choose another variant of the harbor";
+}
+
 // result.json says which fill probability the swarm used: the default, --paper's 0, an
 // explicit --fill, and none for an algorithm without a swarm.
 TEST_F(OptimizeCli, ResultRecordsTheFillProbability) {
