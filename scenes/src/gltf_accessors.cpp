@@ -59,16 +59,6 @@ std::uint32_t componentAsIndex(const unsigned char* at, int componentType) {
     }
 }
 
-std::uint64_t sizeOf(int componentType) {
-    switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    default: return 4;
-    }
-}
-
 // Start of element 0 and the stride, for an accessor validated to have a bufferView.
 const unsigned char* elementBase(const tinygltf::Model& model, const tinygltf::Accessor& accessor,
                                  std::uint64_t& stride) {
@@ -92,7 +82,7 @@ std::vector<float> readFloats(const tinygltf::Model& model, int index, int compo
         fail(file, where, "expected " + std::string(components == 1 ? "SCALAR" : "VEC" + std::to_string(components)) +
                               " elements, got type " + std::to_string(accessor.type));
     }
-    const std::uint64_t componentBytes = sizeOf(accessor.componentType);
+    const std::uint64_t componentBytes = componentSize(accessor.componentType);
     std::vector<float> values(accessor.count * std::size_t(components), 0.0f);
     if (accessor.bufferView >= 0) {
         std::uint64_t stride = 0;
@@ -108,7 +98,7 @@ std::vector<float> readFloats(const tinygltf::Model& model, int index, int compo
         const auto& sparse = accessor.sparse;
         const unsigned char* indices = viewBase(model, sparse.indices.bufferView, sparse.indices.byteOffset);
         const unsigned char* replacements = viewBase(model, sparse.values.bufferView, sparse.values.byteOffset);
-        const std::uint64_t indexBytes = sizeOf(sparse.indices.componentType);
+        const std::uint64_t indexBytes = componentSize(sparse.indices.componentType);
         for (int s = 0; s < sparse.count; ++s) {
             const std::uint32_t target = componentAsIndex(indices + s * indexBytes, sparse.indices.componentType);
             if (target >= accessor.count) {
@@ -150,8 +140,8 @@ std::vector<std::uint32_t> readIndices(const tinygltf::Model& model, int index, 
         const auto& sparse = accessor.sparse;
         const unsigned char* targets = viewBase(model, sparse.indices.bufferView, sparse.indices.byteOffset);
         const unsigned char* replacements = viewBase(model, sparse.values.bufferView, sparse.values.byteOffset);
-        const std::uint64_t targetBytes = sizeOf(sparse.indices.componentType);
-        const std::uint64_t valueBytes = sizeOf(accessor.componentType);
+        const std::uint64_t targetBytes = componentSize(sparse.indices.componentType);
+        const std::uint64_t valueBytes = componentSize(accessor.componentType);
         for (int s = 0; s < sparse.count; ++s) {
             const std::uint32_t target = componentAsIndex(targets + s * targetBytes, sparse.indices.componentType);
             if (target >= accessor.count) {

@@ -104,6 +104,8 @@ std::uint64_t requiredExtensionInteger(const tinygltf::Value& object, const char
 ModelGraph validateModel(const tinygltf::Model& model, const std::string& file,
                          std::uint64_t decodedBytesAllowance);
 
+// Bytes of one component of a glTF component type (5120..5126); 0 for any other.
+std::uint64_t componentSize(int componentType);
 // Bytes of one element of an accessor (type × component size); 0 for an unknown type.
 std::uint64_t accessorElementSize(const tinygltf::Accessor& accessor);
 int accessorComponentCount(const tinygltf::Accessor& accessor);

@@ -365,8 +365,6 @@ std::vector<unsigned char> standInsForUnreadableObjects(const std::vector<unsign
     if (accessors) {
         static const std::map<std::string, int> kComponents = {{"SCALAR", 1}, {"VEC2", 2},  {"VEC3", 3}, {"VEC4", 4},
                                                                {"MAT2", 4},   {"MAT3", 9},  {"MAT4", 16}};
-        static const std::map<int, int> kComponentBytes = {{5120, 1}, {5121, 1}, {5122, 2},
-                                                           {5123, 2}, {5125, 4}, {5126, 4}};
         // An unused accessor of a type glTF does not define (valid: the validator warns):
         // a scalar stand-in.
         for (std::size_t a = 0; a < accessors->size(); ++a) {
@@ -394,14 +392,12 @@ std::vector<unsigned char> standInsForUnreadableObjects(const std::vector<unsign
                 continue;
             }
             const auto components = kComponents.find(type->get<std::string>());
-            const auto componentBytes = kComponentBytes.find(component->get<int>());
-            if (components == kComponents.end() || componentBytes == kComponentBytes.end()) continue;
+            // As the accessor reader sizes an element (accessorElementSize).
+            const std::uint64_t element = components == kComponents.end()
+                                              ? 0
+                                              : std::uint64_t(components->second) * componentSize(component->get<int>());
             const std::uint64_t elements = count->get<std::uint64_t>();
-            if (elements == 0 || elements > zeroBudget) continue;
-            // Matrix columns of 1- and 2-byte components are 4-byte aligned (spec 3.6.2.4).
-            std::uint64_t element = std::uint64_t(components->second) * std::uint64_t(componentBytes->second);
-            if (type->get<std::string>() == "MAT2" && componentBytes->second == 1) element = 8;
-            if (type->get<std::string>() == "MAT3" && componentBytes->second < 4) element = componentBytes->second == 1 ? 12 : 24;
+            if (element == 0 || elements == 0 || elements > zeroBudget) continue;
             const std::uint64_t needed = elements * element;
             if (needed > zeroBudget) continue;
             zeroBytes = std::max(zeroBytes, needed);

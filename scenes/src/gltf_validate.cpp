@@ -22,8 +22,6 @@ std::string element(const std::string& array, int index) {
     return array + "[" + std::to_string(index) + "]";
 }
 
-namespace {
-
 std::uint64_t componentSize(int componentType) {
     switch (componentType) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
@@ -36,6 +34,8 @@ std::uint64_t componentSize(int componentType) {
     default: return 0;
     }
 }
+
+namespace {
 
 // Checks indices into one of the model's arrays.
 class RefChecker {
