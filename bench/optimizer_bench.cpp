@@ -381,7 +381,7 @@ int sweep() {
 
 // ---- GA-PSO budget fill (--fill) ------------------------------------------------------------
 
-// Fill probability 0 (before 2026-12-04), the default and every particle, on the harbor-shaped
+// Fill probability 0 (no fill), the default and every particle, on the harbor-shaped
 // problem and on synthetic instances 1-4 with and without the additive surrogate table (the CLI
 // always measures it; without it the fill takes the cheapest step first).
 int fillSweep() {

@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
     keepFreedMemory();
     CLI::App app{"lodopt: perceptual LOD combination optimizer", "lodopt"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "lodopt 0.1.0");
+    app.set_version_flag("--version", std::string("lodopt ") + LODOPT_VERSION);
     addSceneCommand(app);
     addRenderCommand(app);
     addMetricsCommand(app);

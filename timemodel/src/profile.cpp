@@ -332,7 +332,7 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
         }
         result.fitErrors = read.errors(fit, "errors", at + ".fit");
         result.heldOutErrors = read.errors(entry, "held_out_errors", at);
-        if (entry.contains("rotated_held_out_errors")) {  // profiles from before 2026-12-03 lack it
+        if (entry.contains("rotated_held_out_errors")) {  // older profiles lack it
             result.rotatedErrors = read.errors(entry, "rotated_held_out_errors", at);
         }
         profile.models.push_back(std::move(result));

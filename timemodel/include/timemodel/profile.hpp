@@ -46,10 +46,9 @@ MachineDescription describeMachine();
 //   "wall-median"  median over the passes of each pass's median (what `render --time` does);
 //   "cpu"          median process CPU time (all of llvmpipe's threads) of draw + glFinish:
 //                  the work, nearly immune to other tenants, but not wall time.
-// The fixed default from 2026-12-03 (on the Intel machine it met the error goal in 14 of 22
-// paired calibrations against 10 of 22 for wall-min, docs/timemodel.md "A steadier
-// statistic"); since 2026-12-05 `lodopt calibrate` chooses per run (kAutoClock, timing.hpp)
-// and falls back to this one when a run cannot judge repeatability.
+// The clock a calibration falls back to when a run cannot judge repeatability (otherwise
+// `lodopt calibrate` chooses per run: kAutoClock, timing.hpp); where the fastest draws scatter
+// it meets the error goal more often than wall-min (docs/timemodel.md "A steadier statistic").
 inline constexpr const char* kDefaultTimingClock = "wall-min-median";
 std::vector<std::string> timingClockNames();
 
@@ -67,7 +66,7 @@ struct TimingSettings {
     double splitHalfMedian = 0.0;
     double splitHalfP90 = 0.0;
     // What the calibration was asked for: a clock's name, or "auto" (timing.hpp) when `clock` is
-    // the wall clock that repeated best in that run; empty in profiles written before 2026-12-05.
+    // the wall clock that repeated best in that run; empty in profiles written before it was recorded.
     std::string clockRequest;
 };
 

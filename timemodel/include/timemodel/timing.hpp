@@ -10,8 +10,8 @@
 // statistic, relative to its time from all passes. This VM's frame speed jumps between levels
 // within minutes (docs/timemodel.md "Partial blocks"); a median over passes that straddle a
 // jump lands on either level from sample to sample, so on such a run the median-based clocks
-// stop repeating while the least stays on the fast level. Other runs (the Intel machine of
-// 2026-12-03) show the opposite: a long lower tail makes the least scatter. So with
+// stop repeating while the least stays on the fast level. Other machines show the opposite: a
+// long lower tail makes the least scatter (docs/timemodel.md "A steadier statistic"). So with
 // kAutoClock the calibration fits the wall clock that repeated best in that run, judged on
 // the fitting samples only (the held-out ones stay unseen by every choice).
 #pragma once
