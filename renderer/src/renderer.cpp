@@ -368,13 +368,19 @@ struct Renderer::Impl {
     }
 };
 
-Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings) : mImpl(std::make_unique<Impl>(scene, settings)) {
+Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings)
+    : Renderer(scene, settings, createOsMesaPlatform()) {}
+
+Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings, std::unique_ptr<Platform> platform)
+    : mImpl(std::make_unique<Impl>(scene, settings)) {
+    if (!platform) throw RenderError("renderer: no platform (null Platform given)");
     if (settings.width < 1 || settings.height < 1 || settings.width > 16384 || settings.height > 16384) {
         throw RenderError("render size " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                           " is outside 1..16384");
     }
     scenes::validateScene(scene);
-    mImpl->platform = createOsMesaPlatform();
+    mImpl->platform = std::move(platform);
+    mImpl->platform->makeCurrent();
     auto glString = [](GLenum name) {
         const GLubyte* text = glGetString(name);
         return text ? std::string(reinterpret_cast<const char*>(text)) : std::string("unknown");
@@ -412,6 +418,7 @@ const RenderSettings& Renderer::settings() const { return mImpl->settings; }
 
 std::string Renderer::glRendererString() const { return mImpl->vendor + " / " + mImpl->rendererName; }
 std::string Renderer::glVersionString() const { return mImpl->version; }
+std::string Renderer::platformDescription() const { return mImpl->platform->description(); }
 
 void Renderer::render(const scenes::Combination& combination, const scenes::Camera& camera, Frame& out) {
     scenes::validateCombination(mImpl->scene, combination);

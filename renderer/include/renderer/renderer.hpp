@@ -129,7 +129,8 @@ struct Layer {
     const std::vector<float>& occluderDepth() const { return blends() ? opaqueDepth : depth; }
 };
 
-// Backend behind the Renderer (Filament-style): creates and makes current a GL context.
+// Backend behind the Renderer (Filament-style): creates and makes current a GL context with
+// OpenGL 3.3 core or later. A Renderer owns its platform; tests and other backends inject one.
 class Platform {
 public:
     virtual ~Platform() = default;
@@ -141,8 +142,10 @@ std::unique_ptr<Platform> createOsMesaPlatform();
 
 class Renderer {
 public:
-    // Uploads every level of every object. `scene` must outlive the renderer.
+    // Uploads every level of every object. `scene` must outlive the renderer. The first form
+    // renders on createOsMesaPlatform(); the second on `platform` (not null: RenderError).
     Renderer(const scenes::Scene& scene, RenderSettings settings = {});
+    Renderer(const scenes::Scene& scene, RenderSettings settings, std::unique_ptr<Platform> platform);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -151,6 +154,7 @@ public:
     // GL_VENDOR / GL_RENDERER / GL_VERSION of the context.
     std::string glRendererString() const;
     std::string glVersionString() const;
+    std::string platformDescription() const;  // Platform::description()
 
     // Draws `combination` (validated) from `camera` into `out` (resized as needed).
     void render(const scenes::Combination& combination, const scenes::Camera& camera, Frame& out);
