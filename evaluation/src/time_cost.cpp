@@ -1,7 +1,6 @@
 #include "evaluation/time_cost.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 
 namespace lodopt::evaluation {
@@ -16,8 +15,7 @@ double clampMs(double ms) { return std::isfinite(ms) ? std::max(ms, 0.0) : 0.0; 
 TimeModelCost::TimeModelCost(const ViewSetup& setup, FrameTimeEstimator estimator, const timemodel::FeatureSet& needed)
     : mTable(setup.scene(), setup.camera(), setup.width(), setup.height(), timemodel::FeatureTable::kDepthPassCells,
              needed),
-      mEstimator(std::move(estimator)),
-      mId(nextId()) {
+      mEstimator(std::move(estimator)) {
     const std::vector<int>& variables = setup.variableObjects();
     scenes::Combination fixedOnly = setup.toScene(optimizer::Combination(variables.size(), 0));
     for (int object : variables) fixedOnly[std::size_t(object)] = scenes::kNotDrawn;
@@ -45,33 +43,30 @@ double TimeModelCost::predictMs(const optimizer::Combination& combination) const
     return clampMs(mEstimator(featuresOf(combination)));
 }
 
-std::uint64_t TimeModelCost::nextId() {
-    static std::atomic<std::uint64_t> counter{0};
-    return ++counter;
-}
-
 double TimeModelCost::deltaMs(const optimizer::Combination& combination, int variable, int newLevel) const {
-    // The repair asks for every variable's step from one combination: its features are summed
-    // once per combination, not once per question (that was quadratic in the searched objects:
-    // most of a tune on the city's dense views). Per thread, since a cost may be shared; keyed
-    // by an id no other cost ever has, not by the address, which a later cost may reuse.
-    struct Memo {
-        std::uint64_t cost = 0;
-        optimizer::Combination combination;
-        timemodel::FrameFeatures features;
-        double ms = 0.0;
-    };
-    thread_local Memo memo;
-    if (memo.cost != mId || memo.combination != combination) {
-        memo.cost = mId;
-        memo.combination = combination;
-        memo.features = featuresOf(combination);
-        memo.ms = clampMs(mEstimator(memo.features));
-    }
+    const timemodel::FrameFeatures before = featuresOf(combination);
     const std::vector<timemodel::FrameFeatures>& options = mOptions[std::size_t(variable)];
     const timemodel::FrameFeatures after =
-        memo.features + (options[std::size_t(newLevel)] - options[std::size_t(combination[std::size_t(variable)])]);
-    return clampMs(mEstimator(after)) - memo.ms;
+        before + (options[std::size_t(newLevel)] - options[std::size_t(combination[std::size_t(variable)])]);
+    return clampMs(mEstimator(after)) - clampMs(mEstimator(before));
+}
+
+void TimeModelCost::deltasMs(const optimizer::Combination& combination, std::span<const int> newLevels,
+                             std::span<double> deltas) const {
+    // The combination's features are summed once for all the steps asked (summing them per
+    // question was quadratic in the searched objects: most of a tune on the city's dense views).
+    const timemodel::FrameFeatures before = featuresOf(combination);
+    const double beforeMs = clampMs(mEstimator(before));
+    for (std::size_t v = 0; v < combination.size(); ++v) {
+        if (newLevels[v] == combination[v]) {
+            deltas[v] = 0.0;
+            continue;
+        }
+        const std::vector<timemodel::FrameFeatures>& options = mOptions[v];
+        const timemodel::FrameFeatures after =
+            before + (options[std::size_t(newLevels[v])] - options[std::size_t(combination[v])]);
+        deltas[v] = clampMs(mEstimator(after)) - beforeMs;
+    }
 }
 
 }  // namespace lodopt::evaluation

@@ -3,6 +3,7 @@
 // the additive surrogate of the LOD selection problem (CITY17 names the problem an MCKP).
 #include "optimizer/mckp.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
@@ -175,10 +176,19 @@ Result Mckp::run(const Problem& problem, const Termination& termination) const {
     const Combination base = coarsestCombination(problem);
     const double baseMs = problem.cost->predictMs(base);
     std::vector<std::vector<double>> costMs(base.size());
+    int maxLevels = 0;
     for (std::size_t i = 0; i < base.size(); ++i) {
         costMs[i].resize(static_cast<std::size_t>(problem.levelCounts[i]));
-        for (int l = 0; l < problem.levelCounts[i]; ++l) {
-            costMs[i][static_cast<std::size_t>(l)] = problem.cost->deltaMs(base, static_cast<int>(i), l);
+        maxLevels = std::max(maxLevels, problem.levelCounts[i]);
+    }
+    // Level l of every variable that has one, asked at once (the others stay at the base).
+    Combination newLevels(base.size());
+    std::vector<double> deltas(base.size());
+    for (int l = 0; l < maxLevels; ++l) {
+        for (std::size_t i = 0; i < base.size(); ++i) newLevels[i] = l < problem.levelCounts[i] ? l : base[i];
+        problem.cost->deltasMs(base, newLevels, deltas);
+        for (std::size_t i = 0; i < base.size(); ++i) {
+            if (l < problem.levelCounts[i]) costMs[i][static_cast<std::size_t>(l)] = deltas[i];
         }
     }
     Combination combination = solveMckp(loss, costMs, problem.budgetMs - baseMs, mParameters.buckets);

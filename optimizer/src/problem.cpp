@@ -98,6 +98,13 @@ double Cost::deltaMs(const Combination& combination, int variable, int newLevel)
     return predictMs(changed) - predictMs(combination);
 }
 
+void Cost::deltasMs(const Combination& combination, std::span<const int> newLevels, std::span<double> deltas) const {
+    assert(newLevels.size() == combination.size() && deltas.size() == combination.size());
+    for (std::size_t i = 0; i < combination.size(); ++i) {
+        deltas[i] = newLevels[i] == combination[i] ? 0.0 : deltaMs(combination, static_cast<int>(i), newLevels[i]);
+    }
+}
+
 AdditiveCost::AdditiveCost(double baseMs, std::vector<std::vector<double>> levelMs)
     : mBaseMs(baseMs), mLevelMs(std::move(levelMs)) {
     if (!std::isfinite(mBaseMs) || mBaseMs < 0.0) {
@@ -128,6 +135,15 @@ double AdditiveCost::deltaMs(const Combination& combination, int variable, int n
     const auto& row = mLevelMs[static_cast<std::size_t>(variable)];
     return row[static_cast<std::size_t>(newLevel)] -
            row[static_cast<std::size_t>(combination[static_cast<std::size_t>(variable)])];
+}
+
+void AdditiveCost::deltasMs(const Combination& combination, std::span<const int> newLevels,
+                            std::span<double> deltas) const {
+    assert(newLevels.size() == combination.size() && deltas.size() == combination.size());
+    for (std::size_t i = 0; i < combination.size(); ++i) {
+        const auto& row = mLevelMs[i];
+        deltas[i] = row[static_cast<std::size_t>(newLevels[i])] - row[static_cast<std::size_t>(combination[i])];
+    }
 }
 
 void validateProblem(const Problem& problem) {

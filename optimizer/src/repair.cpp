@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -23,12 +24,22 @@ double repairToBudget(const Problem& problem, Combination& combination) {
     const Cost& cost = *problem.cost;
     const bool haveSurrogate = !problem.surrogateLoss.empty();
     double ms = cost.predictMs(combination);
+    Combination coarser;
+    std::vector<double> deltas;
     while (true) {
         if (!std::isfinite(ms)) {
             throw ProblemError("the cost model predicted " + std::to_string(ms) + " ms for combination " +
                                formatCombination(combination));
         }
         if (ms <= problem.budgetMs) return ms;
+
+        // Every variable's step one level coarser, asked at once (the coarsest stay put).
+        coarser.resize(combination.size());
+        deltas.resize(combination.size());
+        for (std::size_t i = 0; i < combination.size(); ++i) {
+            coarser[i] = combination[i] + 1 < problem.levelCounts[i] ? combination[i] + 1 : combination[i];
+        }
+        cost.deltasMs(combination, coarser, deltas);
 
         // Best step that saves time, by the rule; and the fallback for a non-monotone model.
         int bestSaving = -1;
@@ -37,9 +48,8 @@ double repairToBudget(const Problem& problem, Combination& combination) {
         int bestAny = -1;
         double bestAnySaved = 0.0;
         for (std::size_t i = 0; i < combination.size(); ++i) {
-            const int level = combination[i];
-            if (level + 1 >= problem.levelCounts[i]) continue;
-            const double saved = -cost.deltaMs(combination, static_cast<int>(i), level + 1);
+            if (coarser[i] == combination[i]) continue;
+            const double saved = -deltas[i];
             if (bestAny < 0 || saved > bestAnySaved) {
                 bestAny = static_cast<int>(i);
                 bestAnySaved = saved;
@@ -47,7 +57,7 @@ double repairToBudget(const Problem& problem, Combination& combination) {
             if (!(saved > 0.0)) continue;
             // Smaller key = less fitness lost per millisecond saved.
             const double key =
-                haveSurrogate ? surrogateStepLoss(problem, i, static_cast<std::size_t>(level)) / saved : -saved;
+                haveSurrogate ? surrogateStepLoss(problem, i, static_cast<std::size_t>(combination[i])) / saved : -saved;
             if (bestSaving < 0 || key < bestKey || (key == bestKey && saved > bestSaved)) {
                 bestSaving = static_cast<int>(i);
                 bestKey = key;
@@ -66,31 +76,8 @@ double repairToBudget(const Problem& problem, Combination& combination) {
     }
 }
 
-namespace {
-
-struct FillStep {
-    double key = 0.0;    // surrogate gain per millisecond added; +inf for a step that adds nothing
-    double added = 0.0;  // Cost::deltaMs of the step
-    int variable = 0;
-};
-
-// Heap order (the best step on top): larger key, then larger added, then lower variable index.
-bool worseStep(const FillStep& a, const FillStep& b) {
-    if (a.key != b.key) return a.key < b.key;
-    if (a.added != b.added) return a.added < b.added;
-    return a.variable > b.variable;
-}
-
-}  // namespace
-
-// The rule is a loop that, each round, asks every variable for its step and takes the best that
-// fits: O(n) cost questions per step, and each question is O(n) for a cost that keys a memo by
-// the whole combination (the evaluation module's). This is the same greedy with a heap of steps
-// checked lazily: a popped step is asked again and put back when its answer changed (a cost
-// whose steps depend on other variables); a step that does not fit is set aside until a taken
-// step lowers the prediction. For a cost whose steps do not depend on the other variables
-// (AdditiveCost; the time model's linear features) the choices are those of the loop, which
-// the tests check against a copy of it.
+// One round per step: every variable's step one level finer asked at once (Cost::deltasMs),
+// the best that fits taken. O(variables) per step for a cost that sums per-variable features.
 double fillToBudget(const Problem& problem, Combination& combination) {
     assert(combination.size() == problem.levelCounts.size());
     const Cost& cost = *problem.cost;
@@ -98,64 +85,53 @@ double fillToBudget(const Problem& problem, Combination& combination) {
     double ms = cost.predictMs(combination);
     assert(ms <= problem.budgetMs);
 
-    // The step of `variable` from the current combination; false when it has none that gains.
-    auto stepOf = [&](int variable, FillStep& step) {
-        const auto level = static_cast<std::size_t>(combination[static_cast<std::size_t>(variable)]);
-        if (level == 0) return false;
-        const double gain =
-            haveSurrogate ? surrogateStepLoss(problem, static_cast<std::size_t>(variable), level - 1) : 1.0;
-        if (!(gain > 0.0)) return false;
-        step.added = cost.deltaMs(combination, variable, static_cast<int>(level) - 1);
-        step.key = step.added > 0.0 ? gain / step.added : std::numeric_limits<double>::infinity();
-        step.variable = variable;
-        return true;
-    };
+    std::vector<std::uint8_t> leftAlone(combination.size(), 0);  // a step the whole prediction refused
+    std::vector<double> gains(combination.size());
+    Combination finer(combination.size());
+    std::vector<double> deltas(combination.size());
+    while (true) {
+        bool anyStep = false;
+        for (std::size_t i = 0; i < combination.size(); ++i) {
+            const auto level = static_cast<std::size_t>(combination[i]);
+            finer[i] = combination[i];
+            if (level == 0 || leftAlone[i]) continue;
+            gains[i] = haveSurrogate ? surrogateStepLoss(problem, i, level - 1) : 1.0;
+            if (!(gains[i] > 0.0)) continue;
+            finer[i] = combination[i] - 1;
+            anyStep = true;
+        }
+        if (!anyStep) return ms;
+        cost.deltasMs(combination, finer, deltas);
 
-    std::vector<FillStep> heap;
-    std::vector<FillStep> setAside;  // did not fit at the prediction they were asked at
-    heap.reserve(combination.size());
-    for (std::size_t i = 0; i < combination.size(); ++i) {
-        FillStep step;
-        if (stepOf(static_cast<int>(i), step)) heap.push_back(step);
-    }
-    std::make_heap(heap.begin(), heap.end(), worseStep);
-    while (!heap.empty()) {
-        std::pop_heap(heap.begin(), heap.end(), worseStep);
-        const FillStep popped = heap.back();
-        heap.pop_back();
-        FillStep step;
-        if (!stepOf(popped.variable, step)) continue;
-        if (step.key != popped.key || step.added != popped.added) {
-            heap.push_back(step);  // asked at another combination: back with today's answer
-            std::push_heap(heap.begin(), heap.end(), worseStep);
-            continue;
+        // The step with the largest gain per millisecond added that fits (a step that adds
+        // nothing first); ties: the larger addedMs, then the lower index.
+        int best = -1;
+        double bestKey = 0.0;
+        double bestAdded = 0.0;
+        for (std::size_t i = 0; i < combination.size(); ++i) {
+            if (finer[i] == combination[i]) continue;
+            const double added = deltas[i];
+            if (!(ms + added <= problem.budgetMs)) continue;
+            const double key = added > 0.0 ? gains[i] / added : std::numeric_limits<double>::infinity();
+            if (best < 0 || key > bestKey || (key == bestKey && added > bestAdded)) {
+                best = static_cast<int>(i);
+                bestKey = key;
+                bestAdded = added;
+            }
         }
-        if (!(ms + step.added <= problem.budgetMs)) {
-            setAside.push_back(step);
-            continue;
-        }
-        const auto variable = static_cast<std::size_t>(step.variable);
+        if (best < 0) return ms;
+        const auto variable = static_cast<std::size_t>(best);
         --combination[variable];
         const double next = cost.predictMs(combination);
         if (!(next <= problem.budgetMs)) {
             // The step's delta let it in, the whole prediction does not (a non-additive model):
             // undo it and leave this variable alone, as the rule says.
             ++combination[variable];
+            leftAlone[variable] = 1;
             continue;
         }
-        const bool lowered = next < ms;
         ms = next;
-        if (stepOf(step.variable, step)) {
-            heap.push_back(step);
-            std::push_heap(heap.begin(), heap.end(), worseStep);
-        }
-        if (lowered && !setAside.empty()) {
-            for (const FillStep& waiting : setAside) heap.push_back(waiting);
-            setAside.clear();
-            std::make_heap(heap.begin(), heap.end(), worseStep);
-        }
     }
-    return ms;
 }
 
 }  // namespace lodopt::optimizer

@@ -103,8 +103,9 @@ TEST(Fill, AStepThatSavesTimeMakesRoomForOneThatDidNotFit) {
     EXPECT_EQ(combination, (Combination{0, 0}));
 }
 
-// The rule as docs/optimizer.md states it, one round at a time: every variable asked, the
-// best step that fits taken. fillToBudget must choose exactly the same for additive costs.
+// The rule as docs/optimizer.md states it, one round at a time: every variable asked one at a
+// time (Cost::deltaMs), the best step that fits taken. fillToBudget asks them all at once
+// (Cost::deltasMs) and must choose exactly the same.
 double referenceFill(const Problem& problem, Combination& combination) {
     const Cost& cost = *problem.cost;
     const bool haveSurrogate = !problem.surrogateLoss.empty();
@@ -142,10 +143,12 @@ double referenceFill(const Problem& problem, Combination& combination) {
     }
 }
 
-// Random additive problems with small integer costs and gains, so that ties are common; some
-// finer levels are cheaper than coarser ones (steps that add nothing or save time), some
-// surrogate steps gain nothing or lose. Every start that fits the budget, filled both ways.
-TEST(Fill, HeapChoosesExactlyWhatTheRulesLoopChooses) {
+// Random problems with small integer costs and gains, so that ties are common; some finer
+// levels are cheaper than coarser ones (steps that add nothing or save time), some surrogate
+// steps gain nothing or lose. Every third problem's cost is not additive (MaxCost: a step's
+// delta depends on the other levels, and the whole prediction may refuse a step its delta let
+// in). Every start that fits the budget, filled both ways.
+TEST(Fill, ChoosesExactlyWhatTheRulesLoopChoosesForAnyCost) {
     Random random(11);
     int compared = 0;
     int changed = 0;
@@ -153,17 +156,21 @@ TEST(Fill, HeapChoosesExactlyWhatTheRulesLoopChooses) {
         const int variables = 1 + random.belowInt(12);
         std::vector<int> levelCounts(static_cast<std::size_t>(variables));
         std::vector<std::vector<double>> levelMs(levelCounts.size());
+        std::vector<std::vector<double>> cpuMs(levelCounts.size());
         std::vector<std::vector<double>> loss(levelCounts.size());
         for (std::size_t i = 0; i < levelCounts.size(); ++i) {
             levelCounts[i] = 1 + random.belowInt(6);
             double lost = 0.0;
             for (int l = 0; l < levelCounts[i]; ++l) {
                 levelMs[i].push_back(static_cast<double>(random.belowInt(6)));  // not monotone on purpose
+                cpuMs[i].push_back(static_cast<double>(random.belowInt(6)));
                 loss[i].push_back(l == 0 ? 0.0 : lost);
                 lost += static_cast<double>(random.belowInt(4) - 1) * 0.25;  // -0.25 .. 0.5 per step
             }
         }
-        const AdditiveCost cost(1.0, levelMs);
+        const AdditiveCost additive(1.0, levelMs);
+        const MaxCost notAdditive(1.0, levelMs, cpuMs);
+        const Cost& cost = trial % 3 == 2 ? static_cast<const Cost&>(notAdditive) : additive;
         TableEvaluator evaluator(loss);
         Problem problem;
         problem.levelCounts = levelCounts;

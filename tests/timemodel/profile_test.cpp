@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "scenes/builtin.hpp"
-#include "timemodel/estimator.hpp"
 #include "timemodel/timing.hpp"
 
 using namespace lodopt;
@@ -269,9 +268,9 @@ TEST(ShippedProfiles, ParseAndPredictPositiveTimesForTheirScenes) {
         if (!scenes::isBuiltinScene(name)) continue;
         const scenes::Scene scene = scenes::makeBuiltinScene(name, profile.sceneSeed);
         for (const std::string& model : timemodel::timeModelNames()) {
-            std::shared_ptr<const timemodel::TimeModel> fitted = timemodel::modelFromProfile(profile, model);
-            timemodel::ViewTimeEstimator estimator(scene, scene.views[0], profile.width, profile.height, fitted);
-            const double ms = estimator.estimateMs(scenes::referenceCombination(scene));
+            const std::unique_ptr<timemodel::TimeModel> fitted = timemodel::modelFromProfile(profile, model);
+            const timemodel::FeatureTable table(scene, scene.views[0], profile.width, profile.height);
+            const double ms = fitted->estimateMs(table.features(scenes::referenceCombination(scene)));
             EXPECT_TRUE(std::isfinite(ms)) << name << " " << model;
             // dong's Cramer average may have a negative texture coefficient (clamped to 0 ms);
             // the least-squares models must predict a real cost for the finest frame.
@@ -283,36 +282,39 @@ TEST(ShippedProfiles, ParseAndPredictPositiveTimesForTheirScenes) {
     }
 }
 
-TEST(ViewTimeEstimator, DeltaIsTheDifferenceOfEstimatesForEveryModel) {
+// A level change applied to a frame's features (FeatureTable::delta, what the scheduler and
+// the search's cost keep up to date) predicts what the whole frame's features predict.
+TEST(FeatureTable, LevelChangeOnTheFeaturesPredictsTheWholeFrameForEveryModel) {
     const scenes::Scene scene = scenes::makeHarborScene();
     const timemodel::DeviceProfile profile = sampleProfile();
+    const timemodel::FeatureTable table(scene, scene.views[1], 256, 256);
     for (const std::string& name : timemodel::timeModelNames()) {
-        std::shared_ptr<const timemodel::TimeModel> model = timemodel::modelFromProfile(profile, name);
-        const timemodel::ViewTimeEstimator estimator(scene, scene.views[1], 256, 256, model);
+        const std::unique_ptr<timemodel::TimeModel> model = timemodel::modelFromProfile(profile, name);
         scenes::Combination combination = {2, 0, scenes::kNotDrawn};
-        timemodel::FrameFeatures current = estimator.table().features(combination);
+        const timemodel::FrameFeatures current = table.features(combination);
         for (int object = 0; object < 3; ++object) {
             for (int level = scenes::kNotDrawn; level < 3; ++level) {
                 scenes::Combination changed = combination;
                 changed[object] = level;
-                const double expected = estimator.estimateMs(changed) - estimator.estimateMs(combination);
-                EXPECT_NEAR(estimator.deltaMs(current, object, combination[object], level), expected, 1e-9) << name;
-                EXPECT_NEAR(estimator.deltaMs(combination, object, level), expected, 1e-9) << name;
+                const double expected = model->estimateMs(table.features(changed));
+                EXPECT_NEAR(model->estimateMs(current + table.delta(object, combination[object], level)), expected,
+                            1e-9 * std::max(1.0, expected))
+                    << name;
             }
         }
         // Finer levels cost more under a fitted model with non-negative coefficients.
-        EXPECT_GE(estimator.estimateMs(scenes::referenceCombination(scene)),
-                  estimator.estimateMs(scenes::coarsestCombination(scene)))
+        EXPECT_GE(model->estimateMs(table.features(scenes::referenceCombination(scene))),
+                  model->estimateMs(table.features(scenes::coarsestCombination(scene))))
             << name;
     }
 }
 
-TEST(ViewTimeEstimator, SeesFeedbackAppliedToTheSharedModel) {
+TEST(TimeModel, FeedbackScalesLaterEstimates) {
     const scenes::Scene scene = scenes::makeHarborScene();
-    std::shared_ptr<timemodel::TimeModel> model = timemodel::modelFromProfile(sampleProfile());
-    const timemodel::ViewTimeEstimator estimator(scene, scene.views[0], 256, 256, model);
-    const scenes::Combination combination = scenes::referenceCombination(scene);
-    const double before = estimator.estimateMs(combination);
-    model->applyFeedback(estimator.table().features(combination), 2.0 * before);
-    EXPECT_NEAR(estimator.estimateMs(combination), 1.3 * before, 1e-9 * before);
+    const std::unique_ptr<timemodel::TimeModel> model = timemodel::modelFromProfile(sampleProfile());
+    const timemodel::FeatureTable table(scene, scene.views[0], 256, 256);
+    const timemodel::FrameFeatures features = table.features(scenes::referenceCombination(scene));
+    const double before = model->estimateMs(features);
+    model->applyFeedback(features, 2.0 * before);
+    EXPECT_NEAR(model->estimateMs(features), 1.3 * before, 1e-9 * before);
 }

@@ -5,10 +5,11 @@
 // contributions). The skipped objects never change, so their sum is taken once: a prediction
 // is a sum over the optimizer's variables plus one model evaluation (the search calls it for
 // every candidate and every repair step; summing all the scene's objects each time took an
-// eighth of a forest search).
+// eighth of a forest search). deltasMs sums a combination's features once for all the steps
+// asked from it. The scheduler keeps its frame's features the same way, as a sum it updates
+// one level change at a time (scheduler::SceneIndex contributions, FrameScheduler::setLevel).
 #pragma once
 
-#include <cstdint>
 #include <functional>
 
 #include "evaluation/evaluation.hpp"
@@ -28,20 +29,21 @@ public:
                   const timemodel::FeatureSet& needed = timemodel::everyFeature());
 
     double predictMs(const optimizer::Combination& combination) const override;
+    // O(searched objects) per call: ask deltasMs for several steps from one combination.
     double deltaMs(const optimizer::Combination& combination, int variable, int newLevel) const override;
+    void deltasMs(const optimizer::Combination& combination, std::span<const int> newLevels,
+                  std::span<double> deltas) const override;
 
     double predictSceneMs(const scenes::Combination& combination) const;
     const timemodel::FeatureTable& table() const { return mTable; }
 
 private:
     timemodel::FrameFeatures featuresOf(const optimizer::Combination& combination) const;
-    static std::uint64_t nextId();
 
     timemodel::FeatureTable mTable;
     FrameTimeEstimator mEstimator;
     timemodel::FrameFeatures mFixed;                             // frame constant + skipped objects
     std::vector<std::vector<timemodel::FrameFeatures>> mOptions;  // [variable][option] contribution
-    std::uint64_t mId;  // this cost's key in deltaMs's per-thread memo
 };
 
 }  // namespace lodopt::evaluation

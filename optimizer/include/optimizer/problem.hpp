@@ -90,6 +90,14 @@ public:
     // and predicts twice; override it with an O(1) formula when the model is additive.
     // `variable` < combination.size(); `newLevel` a valid level of that variable.
     virtual double deltaMs(const Combination& combination, int variable, int newLevel) const;
+
+    // Every variable's step from one combination at once: deltas[i] = deltaMs(combination, i,
+    // newLevels[i]), exactly 0 where newLevels[i] == combination[i]. `newLevels` and `deltas`
+    // have combination.size() entries. Repair, fill and the MCKP baseline ask this way, so a
+    // cost that sums per-variable features sums them once per combination rather than once per
+    // question. The default asks deltaMs per variable.
+    virtual void deltasMs(const Combination& combination, std::span<const int> newLevels,
+                          std::span<double> deltas) const;
 };
 
 // The simplest Cost: a fixed frame cost plus one figure per variable and level. Useful for
@@ -102,6 +110,8 @@ public:
 
     double predictMs(const Combination& combination) const override;
     double deltaMs(const Combination& combination, int variable, int newLevel) const override;
+    void deltasMs(const Combination& combination, std::span<const int> newLevels,
+                  std::span<double> deltas) const override;
 
     const std::vector<std::vector<double>>& levelMs() const { return mLevelMs; }
 

@@ -7,7 +7,7 @@
 //     and the variable with the smallest loss / savedMs is lowered;
 //   - without one, every step is assumed to lose the same fitness, so loss per millisecond is
 //     proportional to 1 / savedMs and the variable whose step saves the most is lowered.
-// savedMs = -Cost::deltaMs. Steps that save nothing are taken only when no step saves time (a
+// savedMs = -Cost::deltaMs (asked for every variable at once: Cost::deltasMs). Steps that save nothing are taken only when no step saves time (a
 // non-monotone cost model), the one with the largest savedMs first. Ties go to the lower
 // variable index. Levels only ever increase, so repair ends after at most sum(levelCounts - 1)
 // steps, and it ends feasible because validateProblem() checked that all-coarsest fits.
@@ -30,9 +30,9 @@ double repairToBudget(const Problem& problem, Combination& combination);
 // addedMs = Cost::deltaMs; a step that adds nothing goes first. Ties: the larger addedMs, then
 // the lower index. A step that the delta lets in but the whole prediction puts over the budget
 // (a non-additive model) is undone and that variable left alone. Levels only decrease, so it
-// ends. Steps are kept in a heap and re-asked lazily: exactly these choices when a variable's
-// deltaMs does not depend on the others' levels, close to them otherwise. `combination` must
-// be valid and fit the budget; returns its predicted milliseconds (<= budgetMs).
+// ends. Both ask every variable's step from one combination in one Cost::deltasMs call per
+// step, so they make exactly these choices for any cost. `combination` must be valid and fit
+// the budget; returns its predicted milliseconds (<= budgetMs).
 double fillToBudget(const Problem& problem, Combination& combination);
 
 }  // namespace lodopt::optimizer
