@@ -4,13 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
-#include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "cli_common.hpp"
 #include "metrics/incremental_evaluator.hpp"
 #include "metrics/metrics.hpp"
+#include "metrics/reference.hpp"
 #include "time_profile.hpp"
 #include "timemodel/profile.hpp"
 
@@ -46,73 +45,6 @@ double microsecondsPerCall(Call call, double minSeconds, std::int64_t& calls) {
         calls += perBatch;
     }
     return median(perCall);
-}
-
-// Straightforward float64 implementations, written from the definitions in docs/metrics.md with
-// OpenCV primitives and nothing shared with the metrics module: what "the float64 reference"
-// means in the bench's deviation column.
-cv::Mat grayOf(const renderer::Frame& frame) {
-    cv::Mat rgba(frame.height, frame.width, CV_8UC4, const_cast<std::uint8_t*>(frame.rgba.data()));
-    cv::Mat wide, gray;
-    rgba.convertTo(wide, CV_64FC4);
-    cv::transform(wide, gray, cv::Matx14d(0.30, 0.59, 0.11, 0.0));  // GAPSO15 §2 weights
-    return gray;
-}
-
-// Wang et al. 2004 with an 11x11 Gaussian window (sigma 1.5), population moments, valid windows.
-double referenceSsim(const renderer::Frame& candidate, const renderer::Frame& reference) {
-    const cv::Mat x = grayOf(candidate), y = grayOf(reference);
-    const double c1 = (0.01 * 255) * (0.01 * 255), c2 = (0.03 * 255) * (0.03 * 255);
-    const cv::Size window(11, 11);
-    cv::Mat mx, my, xx, yy, xy;
-    cv::GaussianBlur(x, mx, window, 1.5, 1.5, cv::BORDER_REFLECT);
-    cv::GaussianBlur(y, my, window, 1.5, 1.5, cv::BORDER_REFLECT);
-    cv::GaussianBlur(x.mul(x), xx, window, 1.5, 1.5, cv::BORDER_REFLECT);
-    cv::GaussianBlur(y.mul(y), yy, window, 1.5, 1.5, cv::BORDER_REFLECT);
-    cv::GaussianBlur(x.mul(y), xy, window, 1.5, 1.5, cv::BORDER_REFLECT);
-    const cv::Mat mxy = mx.mul(my), mx2 = mx.mul(mx), my2 = my.mul(my);
-    const cv::Mat numerator = (2 * mxy + c1).mul(2 * (xy - mxy) + c2);
-    const cv::Mat denominator = (mx2 + my2 + c1).mul((xx - mx2) + (yy - my2) + c2);
-    const cv::Mat map = numerator / denominator;
-    return cv::mean(map(cv::Rect(5, 5, x.cols - 10, x.rows - 10)))[0];
-}
-
-double entropyOf(const std::vector<double>& histogram) {
-    double total = 0.0, entropy = 0.0;
-    for (double count : histogram) total += count;
-    for (double count : histogram) {
-        if (count > 0) entropy -= count / total * std::log2(count / total);
-    }
-    return entropy;
-}
-
-// Sobel magnitude on interior pixels, 256 bins over [0, 255 sqrt(20)].
-double referenceBoundaryEntropy(const renderer::Frame& frame) {
-    const cv::Mat gray = grayOf(frame);
-    cv::Mat gx, gy;
-    cv::Sobel(gray, gx, CV_64F, 1, 0, 3);
-    cv::Sobel(gray, gy, CV_64F, 0, 1, 3);
-    std::vector<double> histogram(256, 0.0);
-    const double top = 255.0 * std::sqrt(20.0);
-    for (int row = 1; row + 1 < gray.rows; ++row) {
-        for (int col = 1; col + 1 < gray.cols; ++col) {
-            const double g = std::hypot(gx.at<double>(row, col), gy.at<double>(row, col));
-            histogram[std::min(255, int(g * 256.0 / top))] += 1.0;
-        }
-    }
-    return entropyOf(histogram);
-}
-
-// 256-bin histogram of the gray level rounded half up.
-double referenceInformationEntropy(const renderer::Frame& frame) {
-    const cv::Mat gray = grayOf(frame);
-    std::vector<double> histogram(256, 0.0);
-    for (int row = 0; row < gray.rows; ++row) {
-        for (int col = 0; col < gray.cols; ++col) {
-            histogram[std::clamp(int(std::floor(gray.at<double>(row, col) + 0.5)), 0, 255)] += 1.0;
-        }
-    }
-    return entropyOf(histogram);
 }
 
 optimizer::Combination randomCombination(const std::vector<int>& levelCounts, std::mt19937_64& rng) {
@@ -284,7 +216,6 @@ std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContex
     metrics::MetricParameters parameters = prepared.metrics;
     // Fused deviations compare like with like: the reference fuses the three fidelities equally.
     parameters.ssimWeight = parameters.boundaryEntropyWeight = parameters.informationEntropyWeight = 1.0;
-    cv::setNumThreads(1);  // lodopt's metrics are single-threaded; so is the reference
 
     std::vector<MetricsRow> rows;
     auto add = [&](const std::string& function, auto call, const std::string& referenceName, auto referenceCall,
@@ -302,44 +233,31 @@ std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContex
         }
         rows.push_back(row);
     };
+    metrics::reference::useOneThread();  // lodopt's metrics are single-threaded; so is the reference
     auto none = [] {};
     volatile double sink = 0.0;
-    const double ssimReference = referenceSsim(candidate, reference);
+    const double ssimReference = metrics::reference::ssim(c, r);
     add(
         "ssim", [&] { sink = metrics::ssim(c, r, parameters); }, "OpenCV float64 GaussianBlur SSIM",
-        [&] { sink = referenceSsim(candidate, reference); }, metrics::ssim(c, r, parameters), ssimReference);
-    const double boundaryReference = referenceBoundaryEntropy(candidate);
+        [&] { sink = metrics::reference::ssim(c, r); }, metrics::ssim(c, r, parameters), ssimReference);
+    const double boundaryReference = metrics::reference::boundaryEntropy(c);
     add(
         "boundary_entropy", [&] { sink = metrics::boundaryEntropy(c, parameters); }, "OpenCV float64 Sobel histogram",
-        [&] { sink = referenceBoundaryEntropy(candidate); }, metrics::boundaryEntropy(c, parameters),
+        [&] { sink = metrics::reference::boundaryEntropy(c); }, metrics::boundaryEntropy(c, parameters),
         boundaryReference);
-    const double informationReference = referenceInformationEntropy(candidate);
+    const double informationReference = metrics::reference::informationEntropy(c);
     add(
         "information_entropy", [&] { sink = metrics::informationEntropy(c, parameters); }, "float64 gray histogram",
-        [&] { sink = referenceInformationEntropy(candidate); }, metrics::informationEntropy(c, parameters),
+        [&] { sink = metrics::reference::informationEntropy(c); }, metrics::informationEntropy(c, parameters),
         informationReference);
     add(
         "precision_recall", [&] { sink = metrics::precisionRecall(c, r, parameters).precision; }, "", none, 0.0, 0.0);
-    // The fused fitness from the three references (GAPSO15: equal weights, entropy fidelity
-    // 1 - |e(c) - e(r)| / |e(r)|).
-    auto fidelity = [](double candidateValue, double referenceValue) {
-        return std::clamp(1.0 - std::abs(candidateValue - referenceValue) / std::max(std::abs(referenceValue), 1e-6),
-                          0.0, 1.0);
-    };
-    const double fusedReference =
-        (std::clamp(ssimReference, 0.0, 1.0) + fidelity(boundaryReference, referenceBoundaryEntropy(reference)) +
-         fidelity(informationReference, referenceInformationEntropy(reference))) /
-        3.0;
+    const double fusedReference = metrics::reference::fitness(c, r);
     const double fused = metrics::evaluate(c, r, parameters).fitness;
     add(
         "evaluate (fused, from scratch)", [&] { sink = metrics::evaluate(c, r, parameters).fitness; },
         "fused float64 references",
-        [&] {
-            sink = (std::clamp(referenceSsim(candidate, reference), 0.0, 1.0) +
-                    fidelity(referenceBoundaryEntropy(candidate), referenceBoundaryEntropy(reference)) +
-                    fidelity(referenceInformationEntropy(candidate), referenceInformationEntropy(reference))) /
-                   3.0;
-        },
+        [&] { sink = metrics::reference::fitness(c, r); },
         fused, fusedReference);
     metrics::IncrementalEvaluator incremental(r, parameters);
     incremental.setCandidate(c);

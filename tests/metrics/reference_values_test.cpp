@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "metrics/metrics.hpp"
+#include "metrics/reference.hpp"
 #include "test_images.hpp"
 
 namespace lodopt::metrics {
@@ -115,6 +116,28 @@ TEST(MetricsReferenceValues, InformationEntropyMatchesScikitImageShannonEntropy)
     EXPECT_NEAR(informationEntropy(images.grayRef.view(), p), kGrayInformation, kEntropyTolerance);
     p.grayWeights = GrayWeights::Bt601;
     EXPECT_NEAR(informationEntropy(images.cand.view(), p), kSceneInformationBt601, kEntropyTolerance);
+}
+
+// The float64 references (metrics/reference.hpp) that `lodopt bench` and bench/metrics_bench
+// measure the metrics against agree with scikit-image and the script too, at the defaults.
+TEST(MetricsReferenceValues, Float64ReferencesMatchScikitImageAndTheScript) {
+    Images images;
+    EXPECT_NEAR(reference::ssim(images.cand.view(), images.ref.view()), kSceneSsimPaper, kSsimTolerance);
+    EXPECT_NEAR(reference::ssim(images.grayCand.view(), images.grayRef.view()), kGraySsim, kSsimTolerance);
+    EXPECT_NEAR(reference::ssim(images.noiseCand.view(), images.noiseRef.view()), kNoiseSsim, kSsimTolerance);
+    EXPECT_NEAR(reference::ssim(images.rgbaCand.view(), images.rgbaRef.view()), kRgbaSsim, kSsimTolerance);
+    EXPECT_NEAR(reference::boundaryEntropy(images.ref.view()), kSceneBoundaryReference, kEntropyTolerance);
+    EXPECT_NEAR(reference::boundaryEntropy(images.cand.view()), kSceneBoundaryCandidate, kEntropyTolerance);
+    EXPECT_NEAR(reference::boundaryEntropy(images.noiseRef.view()), kNoiseBoundary, kEntropyTolerance);
+    EXPECT_NEAR(reference::boundaryEntropy(images.grayRef.view()), kGrayBoundary, kEntropyTolerance);
+    EXPECT_NEAR(reference::informationEntropy(images.ref.view()), kSceneInformationReference, kEntropyTolerance);
+    EXPECT_NEAR(reference::informationEntropy(images.cand.view()), kSceneInformationCandidate, kEntropyTolerance);
+    EXPECT_NEAR(reference::informationEntropy(images.noiseRef.view()), kNoiseInformation, kEntropyTolerance);
+    EXPECT_NEAR(reference::informationEntropy(images.grayRef.view()), kGrayInformation, kEntropyTolerance);
+    // The fused reference is the metrics' fused fitness at equal weights.
+    EXPECT_NEAR(reference::fitness(images.cand.view(), images.ref.view()),
+                evaluate(images.cand.view(), images.ref.view(), {}).fitness, kSsimTolerance);
+    EXPECT_THROW(reference::ssim(images.cand.view(), images.grayRef.view()), std::invalid_argument);
 }
 
 TEST(MetricsReferenceValues, PaperModesMatchScript) {
