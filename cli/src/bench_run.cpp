@@ -10,6 +10,7 @@
 #include "metrics/incremental_evaluator.hpp"
 #include "metrics/metrics.hpp"
 #include "metrics/reference.hpp"
+#include "statistics.hpp"
 #include "time_profile.hpp"
 #include "timemodel/profile.hpp"
 
@@ -20,13 +21,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-double median(std::vector<double> values) {
-    if (values.empty()) return NAN;
-    std::sort(values.begin(), values.end());
-    const std::size_t mid = values.size() / 2;
-    return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
 // Median over 5 batches of the time per call of `call`, each batch about minSeconds / 5.

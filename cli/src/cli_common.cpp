@@ -1,5 +1,6 @@
 #include "cli_common.hpp"
 
+#include <cmath>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -78,33 +79,31 @@ void checkIdentity(const std::string& path, const nlohmann::json& was, const nlo
     }
 }
 
-std::vector<bool> heldOutViews(int count, int holdout) {
-    std::vector<bool> heldOut(std::size_t(std::max(count, 0)), false);
-    if (holdout < 1 || holdout >= count) return heldOut;
-    const int stride = count / holdout;
-    for (int j = 0; j < holdout; ++j) heldOut[std::size_t(j * stride + (stride - 1 - j % stride))] = true;
-    return heldOut;
-}
-
-std::vector<int> tuningFolds(const std::vector<bool>& heldOut, int folds) {
-    std::vector<int> fold(heldOut.size(), -1);
-    int next = 0;
-    for (std::size_t k = 0; k < heldOut.size(); ++k) {
-        if (!heldOut[k]) fold[k] = next++ % std::max(folds, 1);
-    }
-    return fold;
-}
-
-int firstBestAbove(double floor, const std::vector<double>& scores, double margin) {
-    int chosen = -1;
-    double best = floor;
-    for (std::size_t i = 0; i < scores.size(); ++i) {
-        if (scores[i] > best + margin) {
-            chosen = int(i);
-            best = scores[i];
+void parseWeights(const std::string& text, metrics::MetricParameters& parameters) {
+    std::vector<double> weights;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        double value = 0;
+        std::size_t used = 0;
+        try {
+            value = std::stod(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
         }
+        if (used == 0 || used != item.size() || !std::isfinite(value) || value < 0) {
+            throw UsageError("--weights: '" + item + "' is not a finite number >= 0 (expected three, like 1,1,1)");
+        }
+        weights.push_back(value);
     }
-    return chosen;
+    if (weights.size() != 3) {
+        throw UsageError("--weights: '" + text +
+                         "' must list exactly three weights: SSIM, boundary entropy, information entropy");
+    }
+    if (weights[0] + weights[1] + weights[2] <= 0) throw UsageError("--weights: at least one weight must be > 0");
+    parameters.ssimWeight = weights[0];
+    parameters.boundaryEntropyWeight = weights[1];
+    parameters.informationEntropyWeight = weights[2];
 }
 
 }  // namespace lodopt::cli

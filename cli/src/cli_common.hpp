@@ -7,6 +7,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "metrics/metrics.hpp"
+
 namespace lodopt::cli {
 
 // Documented in the README: 0 ok, 1 runtime failure, 2 bad input or usage.
@@ -42,19 +44,9 @@ void checkIdentity(const std::string& path, const nlohmann::json& was, const nlo
 // Parses "0,2,1" into integers; throws UsageError naming `what`.
 std::vector<int> parseIntList(const std::string& text, const std::string& what);
 
-// Which of `count` views a tuning run holds out (1 <= holdout < count): one in each run of
-// count / holdout views, at a position that steps back by one from run to run, so that views
-// sampled in turn around V named views are not all held out around the same one when the
-// run length is a multiple of V.
-std::vector<bool> heldOutViews(int count, int holdout);
-// Cross-validation folds of a tuning run: fold k % folds for the k-th view not held out (in
-// list order, so that each fold spreads along a path), -1 for held-out views; folds >= 1.
-std::vector<int> tuningFolds(const std::vector<bool>& heldOut, int folds);
-// The index of the first best score that beats `floor` and every earlier score by more than
-// `margin`, -1 when none beats `floor` (a NaN never does): ties keep the earlier, simpler set.
-// tune writes the form it picks among the forms' tuning scores (floor -infinity) or, with
-// cross-validation, among their out-of-fold scores over the defaults' (-1: the defaults).
-int firstBestAbove(double floor, const std::vector<double>& scores, double margin = 1e-12);
+// --weights "ssim,boundary,information" (docs/metrics.md): three finite numbers >= 0, not all 0,
+// into `parameters`' fusion weights; throws UsageError naming the bad item.
+void parseWeights(const std::string& text, metrics::MetricParameters& parameters);
 // Parses "512x512".
 void parseSize(const std::string& text, int& width, int& height);
 // --shading lambert|pbr (docs/renderer.md "Shading"); CLI11 refuses any other value.

@@ -24,6 +24,7 @@
 #include "optimizer/mckp.hpp"
 #include "progress.hpp"
 #include "report_bench.hpp"
+#include "statistics.hpp"
 #include "scenes/atomic_file.hpp"
 #include "scenes/builtin.hpp"
 
@@ -54,12 +55,6 @@ std::vector<std::string> splitNames(const std::string& text) {
         if (!item.empty()) names.push_back(item);
     }
     return names;
-}
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t mid = values.size() / 2;
-    return values.empty() ? NAN : values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
 }
 
 // Every digit a double needs to read back the same: the tables are compared with the JSON's

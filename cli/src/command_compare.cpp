@@ -20,6 +20,7 @@
 #include "interrupt.hpp"
 #include "optimize_run.hpp"
 #include "progress.hpp"
+#include "statistics.hpp"
 #include "scenes/atomic_file.hpp"
 
 namespace lodopt::cli {
@@ -31,13 +32,6 @@ struct RunRecord {
     optimizer::Result result;
     double wallSeconds = 0.0;
 };
-
-double median(std::vector<double> values) {
-    if (values.empty()) return 0.0;
-    std::sort(values.begin(), values.end());
-    const std::size_t mid = values.size() / 2;
-    return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
-}
 
 // Evaluations spent when the run's best first reached `target` (-1 if never).
 std::int64_t evaluationsToReach(const optimizer::Result& result, double target) {

@@ -25,33 +25,6 @@ struct MetricsOptions {
 };
 
 // "1,1,1" -> SSIM, boundary entropy, information entropy weights: finite, >= 0, one > 0.
-void parseWeights(const std::string& text, metrics::MetricParameters& parameters) {
-    std::vector<double> weights;
-    std::stringstream stream(text);
-    std::string item;
-    while (std::getline(stream, item, ',')) {
-        double value = 0;
-        std::size_t used = 0;
-        try {
-            value = std::stod(item, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used == 0 || used != item.size() || !std::isfinite(value) || value < 0) {
-            throw UsageError("--weights: '" + item + "' is not a finite number >= 0 (expected three, like 1,1,1)");
-        }
-        weights.push_back(value);
-    }
-    if (weights.size() != 3) {
-        throw UsageError("--weights: '" + text +
-                         "' must list exactly three weights: SSIM, boundary entropy, information entropy");
-    }
-    if (weights[0] + weights[1] + weights[2] <= 0) throw UsageError("--weights: at least one weight must be > 0");
-    parameters.ssimWeight = weights[0];
-    parameters.boundaryEntropyWeight = weights[1];
-    parameters.informationEntropyWeight = weights[2];
-}
-
 renderer::LoadedImage loadImage(const std::string& path) {
     try {
         return renderer::readImage(path);

@@ -308,7 +308,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     PreparedScene prepared = prepareScene(options.optimize);
     const std::vector<scenes::Camera> cameras = sampleCameras(prepared.scene, options);
     std::vector<TuneView> views(cameras.size());
-    const std::vector<bool> heldOutFlags = heldOutViews(options.views, holdout);
+    const std::vector<bool> heldOutFlags = scheduler::heldOutViews(options.views, holdout);
     // Cross-validation needs two folds of at least one tuning view each.
     const int folds = std::min(options.folds, options.views - holdout);
     const bool crossValidate = options.select == "cv" && folds >= 2;
@@ -316,7 +316,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
         std::cerr << "lodopt: warning: --select cv needs at least 2 tuning views (this run has "
                   << options.views - holdout << "); choosing by the tuning score\n";
     }
-    const std::vector<int> foldOf = tuningFolds(heldOutFlags, folds);
+    const std::vector<int> foldOf = scheduler::tuningFolds(heldOutFlags, folds);
     for (int k = 0; k < options.views; ++k) {
         views[std::size_t(k)].camera = cameras[std::size_t(k)];
         views[std::size_t(k)].heldOut = heldOutFlags[std::size_t(k)];
@@ -381,7 +381,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     std::vector<double> scores;
     for (const FormResult& r : results) scores.push_back(crossValidate ? r.crossValidated : r.search.bestValue);
     // Index into results, -1 for the defaults (only cross-validation compares with them).
-    const int chosen = firstBestAbove(crossValidate ? defaultTuning : -INFINITY, scores);
+    const int chosen = scheduler::firstBestAbove(crossValidate ? defaultTuning : -INFINITY, scores);
     const bool keptDefaults = chosen < 0;
     const scheduler::SchedulerCoefficients written =
         keptDefaults ? defaults : results[std::size_t(chosen)].coefficients;

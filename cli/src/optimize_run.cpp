@@ -30,29 +30,7 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
     PreparedScene prepared;
     parseSize(options.size, prepared.settings.width, prepared.settings.height);
     prepared.settings.shading = renderer::parseShading(options.shading);
-    std::vector<int> weights = {};
-    {
-        std::vector<double> parsed;
-        std::stringstream stream(options.weights);
-        std::string item;
-        while (std::getline(stream, item, ',')) {
-            try {
-                std::size_t used = 0;
-                parsed.push_back(std::stod(item, &used));
-                if (used != item.size()) throw std::invalid_argument(item);
-            } catch (const std::exception&) {
-                throw UsageError("--weights: '" + item + "' is not a number (expected ssim,boundary,information)");
-            }
-        }
-        if (parsed.size() != 3) throw UsageError("--weights: expected three numbers ssim,boundary,information");
-        for (double w : parsed) {
-            if (!std::isfinite(w) || w < 0.0) throw UsageError("--weights: each weight must be finite and >= 0");
-        }
-        if (parsed[0] + parsed[1] + parsed[2] <= 0.0) throw UsageError("--weights: at least one weight must be > 0");
-        prepared.metrics.ssimWeight = parsed[0];
-        prepared.metrics.boundaryEntropyWeight = parsed[1];
-        prepared.metrics.informationEntropyWeight = parsed[2];
-    }
+    parseWeights(options.weights, prepared.metrics);
     prepared.scene = scenes::loadScene(options.scene, options.sceneSeed);
     if (options.view == "all") {
         for (std::size_t v = 0; v < prepared.scene.views.size(); ++v) prepared.views.push_back(int(v));

@@ -177,18 +177,4 @@ void finestVisible(const scheduler::FrameScheduler& s, scenes::Combination& leve
     }
 }
 
-Spread spreadOf(std::vector<double> values) {
-    Spread spread;
-    if (values.empty()) return spread;
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    spread.median = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-    spread.p90 = values[std::min(n - 1, std::size_t(std::ceil(0.9 * double(n))) - 1)];
-    spread.max = values.back();
-    double sum = 0.0;
-    for (double v : values) sum += v;
-    spread.mean = sum / double(n);
-    return spread;
-}
-
 }  // namespace lodopt::cli

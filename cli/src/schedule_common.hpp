@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "statistics.hpp"
 #include "scenes/scene.hpp"
 #include "scheduler/scheduler.hpp"
 
@@ -45,10 +46,5 @@ nlohmann::json cameraToJson(const scenes::Camera& camera);
 // Throws UsageError naming `where` when a field is missing or mistyped.
 scenes::Camera cameraFromJson(const nlohmann::json& json, const std::string& where);
 
-// Median, 90th percentile (nearest rank) and max of `values` (0 for an empty list).
-struct Spread {
-    double median = 0.0, p90 = 0.0, max = 0.0, mean = 0.0;
-};
-Spread spreadOf(std::vector<double> values);
 
 }  // namespace lodopt::cli

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli_common.hpp"
+#include "statistics.hpp"
 #include "timemodel/profile.hpp"
 
 namespace lodopt::cli {
@@ -17,12 +18,6 @@ double processCpuMs() {
     timespec now{};
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
     return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
-}
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace

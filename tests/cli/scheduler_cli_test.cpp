@@ -24,6 +24,7 @@
 #include "run_lodopt.hpp"
 #include "scenes/builtin.hpp"
 #include "scheduler/coefficients.hpp"
+#include "scheduler/tuning.hpp"
 #include "timemodel/features.hpp"
 #include "timemodel/profile.hpp"
 
@@ -218,7 +219,7 @@ TEST_F(SchedulerCli, TuneReportsTunedAndPublishedFractions) {
     EXPECT_EQ(report["selection"]["rule"], "tuning");
     EXPECT_FALSE(report["selection"].contains("folds"));
     EXPECT_FALSE(report["forms"]["published"].contains("cross_validated_fraction"));
-    const int best = lodopt::cli::firstBestAbove(-INFINITY, {report["forms"]["published"]["tuning_fraction"].get<double>(),
+    const int best = lodopt::scheduler::firstBestAbove(-INFINITY, {report["forms"]["published"]["tuning_fraction"].get<double>(),
                                                               report["forms"]["extended"]["tuning_fraction"].get<double>()});
     const std::string writtenForm = best == 1 ? "extended" : "published";
     EXPECT_EQ(report["selection"]["written"], writtenForm);
@@ -251,7 +252,7 @@ TEST_F(SchedulerCli, SelectCvWritesTheDefaultsOrTheBestFormOutOfFold) {
         scores.push_back(report["forms"][form]["cross_validated_fraction"].get<double>());
         EXPECT_GT(scores.back(), 0.0) << form;
     }
-    const int best = lodopt::cli::firstBestAbove(defaultsScore, scores);
+    const int best = lodopt::scheduler::firstBestAbove(defaultsScore, scores);
     EXPECT_EQ(writtenSet, best < 0 ? "defaults" : best == 0 ? "published" : "extended");
     if (writtenSet == "defaults") {
         EXPECT_EQ(report["tuned"], report["defaults"]);

@@ -92,4 +92,21 @@ PatternSearchResult patternSearch(const std::function<double(const std::vector<d
                                   const std::vector<double>& upper, std::vector<double> steps,
                                   const PatternSearchOptions& options);
 
+// ---- Which views tune on, which are held out, which coefficient set is written ----------
+// The selection policy of `lodopt tune` (docs/scheduler.md "Tuning"), apart from scoring.
+
+// Which of `count` views a tuning run holds out (1 <= holdout < count): one in each run of
+// count / holdout views, at a position that steps back by one from run to run, so that views
+// sampled in turn around V named views are not all held out around the same one when the
+// run length is a multiple of V.
+std::vector<bool> heldOutViews(int count, int holdout);
+// Cross-validation folds of a tuning run: fold k % folds for the k-th view not held out (in
+// list order, so that each fold spreads along a path), -1 for held-out views; folds >= 1.
+std::vector<int> tuningFolds(const std::vector<bool>& heldOut, int folds);
+// The index of the first best score that beats `floor` and every earlier score by more than
+// `margin`, -1 when none beats `floor` (a NaN never does): ties keep the earlier, simpler set.
+// `lodopt tune` writes the form it picks among the forms' tuning scores (floor -infinity) or, with
+// cross-validation, among their out-of-fold scores over the defaults' (-1: the defaults).
+int firstBestAbove(double floor, const std::vector<double>& scores, double margin = 1e-12);
+
 }  // namespace lodopt::scheduler

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <vector>
 
-#include "cli_common.hpp"
+#include "scheduler/tuning.hpp"
 
 // 16 views sampled in turn around 4 named views: the 4 held out are around 4 different ones
 // (the first version held out views 3, 7, 11, 15: all around the last named view).
 TEST(TuneHoldout, SpreadOverTheListAndOverTheNamedViews) {
-    const std::vector<bool> sixteen = lodopt::cli::heldOutViews(16, 4);
+    const std::vector<bool> sixteen = lodopt::scheduler::heldOutViews(16, 4);
     std::vector<int> positions;
     for (int k = 0; k < 16; ++k) {
         if (sixteen[std::size_t(k)]) positions.push_back(k);
@@ -23,7 +23,7 @@ TEST(TuneHoldout, SpreadOverTheListAndOverTheNamedViews) {
     // One per run of count / holdout views, the default quarter included; never out of range.
     for (int count = 2; count <= 40; ++count) {
         for (int holdout = 1; holdout < count; ++holdout) {
-            const std::vector<bool> flags = lodopt::cli::heldOutViews(count, holdout);
+            const std::vector<bool> flags = lodopt::scheduler::heldOutViews(count, holdout);
             ASSERT_EQ(flags.size(), std::size_t(count));
             EXPECT_EQ(std::count(flags.begin(), flags.end(), true), holdout) << count << " " << holdout;
             const int stride = count / holdout;
@@ -32,13 +32,13 @@ TEST(TuneHoldout, SpreadOverTheListAndOverTheNamedViews) {
             }
         }
     }
-    const std::vector<bool> none = lodopt::cli::heldOutViews(4, 4);  // out of range: none held out
+    const std::vector<bool> none = lodopt::scheduler::heldOutViews(4, 4);  // out of range: none held out
     EXPECT_EQ(std::count(none.begin(), none.end(), true), 0);
 }
 
 TEST(TuneCrossValidation, FoldsSpreadOverTheTuningViewsAndSkipHeldOutOnes) {
-    const std::vector<bool> heldOut = lodopt::cli::heldOutViews(16, 4);
-    const std::vector<int> folds = lodopt::cli::tuningFolds(heldOut, 3);
+    const std::vector<bool> heldOut = lodopt::scheduler::heldOutViews(16, 4);
+    const std::vector<int> folds = lodopt::scheduler::tuningFolds(heldOut, 3);
     ASSERT_EQ(folds.size(), 16u);
     std::vector<int> perFold(3, 0);
     int previous = -1;
@@ -57,7 +57,7 @@ TEST(TuneCrossValidation, FoldsSpreadOverTheTuningViewsAndSkipHeldOutOnes) {
 }
 
 TEST(TuneCrossValidation, DefaultsStayUnlessATunedSetScoresBetterOutOfFold) {
-    using lodopt::cli::firstBestAbove;
+    using lodopt::scheduler::firstBestAbove;
     // Cross-validation: the floor is the defaults' score.
     EXPECT_EQ(firstBestAbove(1.0, {0.99, 0.98}), -1);   // both lose: the defaults
     EXPECT_EQ(firstBestAbove(1.0, {1.0, 1.0}), -1);     // ties keep the defaults
