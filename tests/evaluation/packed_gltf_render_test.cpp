@@ -6,7 +6,7 @@
 // view under the bound are written beside them.
 //
 // The representative cases run in the suite; DISABLED_FullTable prints the whole table of
-// docs/gltf.md:
+// docs/results.md §10 (docs/gltf.md "Packed models" says what it shows):
 //   build/tests/evaluation_tests --gtest_also_run_disabled_tests --gtest_filter='PackedGltf.DISABLED_FullTable'
 #include <gtest/gtest.h>
 
@@ -217,7 +217,7 @@ TEST(PackedGltf, ShapeCollectionGltfpack) { checkCase("gltf-transform/ShapeColle
 TEST(PackedGltf, ShapeCollectionMeshopt) { checkCase("gltf-transform/ShapeCollection.glb", "gltfpack-cc"); }
 TEST(PackedGltf, ShapeCollectionDraco) { checkCase("gltf-transform/ShapeCollection.glb", "draco"); }
 
-// Every shared model × every packer, as a Markdown table (docs/gltf.md).
+// Every shared model × every packer, as a Markdown table (docs/results.md §10).
 TEST(PackedGltf, DISABLED_FullTable) {
     const std::vector<std::string> models = {
         "FlightHelmet/FlightHelmet.gltf", "Fox/Fox.glb", "CesiumMan/CesiumMan.glb", "kenney/alien.glb",

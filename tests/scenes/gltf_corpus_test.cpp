@@ -186,7 +186,7 @@ struct ModelCounts {
     std::uint64_t triangles;  // level 0, all objects
 };
 
-// Counted by hand from each file's JSON (docs/gltf.md, "Models").
+// Counted by hand from each file's JSON (docs/gltf.md, "Which nodes become objects").
 TEST(GltfCorpus, ValidModelsHaveTheExpectedObjects) {
     LODOPT_REQUIRE_DATA("gltf/models");
     const ModelCounts models[] = {
