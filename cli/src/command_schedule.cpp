@@ -16,7 +16,7 @@
 
 #include "cli_common.hpp"
 #include "interrupt.hpp"
-#include "metrics/metrics.hpp"
+#include "evaluation/schedule_walk.hpp"
 #include "progress.hpp"
 #include "renderer/renderer.hpp"
 #include "scenes/atomic_file.hpp"
@@ -25,10 +25,8 @@
 #include "schedule_common.hpp"
 #include "schedule_rows.hpp"
 #include "scheduler/coefficients.hpp"
-#include "scheduler/measurement.hpp"
 #include "scheduler/scheduler.hpp"
 #include "time_profile.hpp"
-#include "timemodel/features.hpp"
 
 namespace lodopt::cli {
 namespace {
@@ -106,81 +104,7 @@ nlohmann::json checkpointIdentity(const ScheduleOptions& o, const scheduler::Sch
             {"frame-time", o.frameTime}};
 }
 
-// Fused fitness of `frame` against `reference` (both RGBA renders of one size).
-double fitnessOf(const renderer::Frame& frame, const renderer::Frame& reference, const metrics::MetricParameters& p) {
-    const metrics::ImageView candidate = metrics::makeImageView(frame.rgba.data(), frame.width, frame.height, 4);
-    const metrics::ImageView truth =
-        metrics::makeImageView(reference.rgba.data(), reference.width, reference.height, 4);
-    return metrics::evaluate(candidate, truth, p).fitness;
-}
-
-// The measurement ceiling (scheduler/measurement.hpp): the first, middle and last rows'
-// decisions, each timed `measurements` times back to back as a frame is timed.
-struct MeasurementCeiling {
-    nlohmann::json json;  // null when nothing was probed
-    double mean = NAN;    // of the probes' ceilings
-    std::vector<int> frames;
-};
-
-MeasurementCeiling probeMeasurementCeiling(renderer::Renderer& renderer, const scenes::CameraPath& path,
-                                           const std::vector<FrameRow>& rows, int measurements, int repeats,
-                                           renderer::Renderer::Statistic statistic) {
-    MeasurementCeiling result;
-    if (rows.empty() || measurements <= 0) return result;
-    std::vector<std::size_t> probed = {0};
-    if (rows.size() > 2) probed.push_back(rows.size() / 2);
-    if (rows.size() > 1) probed.push_back(rows.size() - 1);
-    nlohmann::json probes = nlohmann::json::array();
-    double sum = 0.0;
-    for (std::size_t r : probed) {
-        const scenes::Camera& camera = path.frames[std::size_t(rows[r].frame)];
-        std::vector<double> times;
-        for (int k = 0; k < measurements; ++k) {
-            times.push_back(renderer.timeRender(rows[r].decision.levels, camera, repeats, 1, statistic));
-        }
-        const double ceiling = scheduler::bandCeiling(times, 0.1);
-        std::vector<double> sorted = times;
-        std::sort(sorted.begin(), sorted.end());
-        const double median = spreadOf(times).median;
-        auto ratioAt = [&](double q) { return sorted[std::size_t(q * double(sorted.size() - 1) + 0.5)] / median; };
-        probes.push_back({{"frame", rows[r].frame},
-                          {"measurements", times.size()},
-                          {"median_ms", median},
-                          {"p10_ratio", ratioAt(0.1)},
-                          {"p90_ratio", ratioAt(0.9)},
-                          {"ceiling", ceiling}});
-        sum += ceiling;
-        result.frames.push_back(rows[r].frame);
-    }
-    result.mean = sum / double(probed.size());
-    result.json = {{"tolerance", 0.1}, {"ceiling", result.mean}, {"probes", probes}};
-    return result;
-}
-
-void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
-    renderer::RenderSettings settings;
-    parseSize(options.size, settings.width, settings.height);
-    settings.shading = renderer::parseShading(options.shading);
-    const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
-    if (scene.objects.empty()) throw UsageError("scene '" + scene.name + "' has no objects");
-    scenes::CameraPath path = options.path.empty() ? defaultCameraPath(scene) : loadCameraPath(scene, options.path);
-    std::vector<int> frameIndices;
-    for (int f = 0; f < int(path.frames.size()); f += options.stride) {
-        if (options.frames > 0 && int(frameIndices.size()) >= options.frames) break;
-        frameIndices.push_back(f);
-    }
-
-    std::unique_ptr<renderer::Renderer> renderer;
-    std::string glRenderer;
-    const renderer::Renderer::Statistic statistic =
-        options.frameTime == "min" ? renderer::Renderer::Statistic::Min : renderer::Renderer::Statistic::Median;
-    if (options.render) {
-        renderer = std::make_unique<renderer::Renderer>(scene, settings);
-        glRenderer = renderer->glRendererString();
-    }
-    const TimeEstimator estimator =
-        loadTimeEstimator(options.profile, options.model, scene.name, settings, glRenderer, std::cerr);
-
+scheduler::SchedulerParameters schedulerParameters(const ScheduleOptions& options) {
     scheduler::SchedulerParameters parameters;
     parameters.budgetMs = options.budgetMs;
     if (!options.coefficients.empty()) parameters.coefficients = loadCoefficientsOrThrow(options.coefficients);
@@ -191,12 +115,52 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     parameters.switchControl.raiseMargin = options.switchMargin;
     parameters.switchControl.refillBelow = options.switchRefill;
     parameters.feedback.beta = options.beta;
-    const scheduler::FeatureMode mode = parseFeatureMode(options.features);
+    return parameters;
+}
 
-    const std::filesystem::path dir(options.outDir);
-    const std::string checkpoint = (dir / "schedule.checkpoint.json").string();
-    const nlohmann::json identity = checkpointIdentity(options, parameters);
-    std::vector<SavedFrame> restored;
+evaluation::WalkOptions walkOptions(const ScheduleOptions& options) {
+    evaluation::WalkOptions walk;
+    walk.render = options.render;
+    walk.fitness = !options.noFitness;
+    walk.baseline = !options.noBaseline;
+    walk.feedback = !options.noFeedback;
+    walk.checkFeatures = options.checkFeatures;
+    walk.repeats = options.repeats;
+    walk.statistic =
+        options.frameTime == "min" ? renderer::Renderer::Statistic::Min : renderer::Renderer::Statistic::Median;
+    return walk;
+}
+
+nlohmann::json ceilingJson(const evaluation::MeasurementCeiling& ceiling) {
+    if (ceiling.probes.empty()) return nullptr;
+    nlohmann::json probes = nlohmann::json::array();
+    for (const evaluation::CeilingProbe& p : ceiling.probes) {
+        probes.push_back({{"frame", p.frame},
+                          {"measurements", p.measurements},
+                          {"median_ms", p.medianMs},
+                          {"p10_ratio", p.p10Ratio},
+                          {"p90_ratio", p.p90Ratio},
+                          {"ceiling", p.ceiling}});
+    }
+    return {{"tolerance", ceiling.tolerance}, {"ceiling", ceiling.ceiling}, {"probes", probes}};
+}
+
+// The frames of the path this run schedules (--stride, --frames).
+std::vector<int> scheduledFrames(const ScheduleOptions& options, const scenes::CameraPath& path) {
+    std::vector<int> frames;
+    for (int f = 0; f < int(path.frames.size()); f += options.stride) {
+        if (options.frames > 0 && int(frames.size()) >= options.frames) break;
+        frames.push_back(f);
+    }
+    return frames;
+}
+
+// The frames an interrupted run saved in `checkpoint`, or none; refuses to overwrite them
+// without --resume.
+std::vector<evaluation::RecordedFrame> restoredFrames(const ScheduleOptions& options, const OutputOptions& output,
+                                                      const std::string& checkpoint, const nlohmann::json& identity,
+                                                      std::size_t total) {
+    std::vector<evaluation::RecordedFrame> restored;
     if (std::filesystem::exists(checkpoint)) {
         if (!options.resume) {
             throw UsageError(checkpoint +
@@ -205,104 +169,44 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         }
         restored = loadScheduleCheckpoint(checkpoint, identity);
     } else if (options.resume && !output.quiet && !output.json) {
-        std::cerr << "lodopt: schedule: no checkpoint in " << dir.string() << ", starting from the first frame\n";
+        std::cerr << "lodopt: schedule: no checkpoint in " << std::filesystem::path(options.outDir).string()
+                  << ", starting from the first frame\n";
     }
-
-    const auto setupStart = std::chrono::steady_clock::now();
-    const scheduler::SceneIndex index(scene, settings.width, settings.height, mode, 0, estimator.model->readFeatures());
-    scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
-    const double setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
-
-    metrics::MetricParameters metricParameters;
-    const scenes::Combination reference = scenes::referenceCombination(scene);
-    renderer::Frame referenceFrame, frame;
-    scenes::Combination finest, baseline;
-    std::vector<FrameRow> rows;
-    rows.reserve(frameIndices.size());
-    std::vector<SavedFrame> savedFrames = std::move(restored);
-    if (savedFrames.size() > frameIndices.size()) {
+    if (restored.size() > total) {
         throw UsageError(checkpoint + ": holds more frames than this run has; delete it to start over");
     }
-    const std::size_t total = frameIndices.size();
+    return restored;
+}
+
+// Walks `frames`, replaying the restored ones, checkpointing every --batch frames; an interrupt
+// stops after a batch (Interrupted).
+std::vector<evaluation::WalkFrame> walkFrames(evaluation::ScheduleWalk& walk, const ScheduleOptions& options,
+                                              const OutputOptions& output, const scenes::CameraPath& path,
+                                              const std::vector<int>& frames, const std::string& checkpoint,
+                                              const nlohmann::json& identity,
+                                              std::vector<evaluation::RecordedFrame> recorded) {
+    std::vector<evaluation::WalkFrame> rows;
+    rows.reserve(frames.size());
+    const std::size_t total = frames.size();
     InterruptGuard interruptGuard;
-    if (savedFrames.size() < total) pollInterrupt("schedule", savedFrames.size(), total, "frame", checkpoint);
-    Progress progress("schedule", total - savedFrames.size(), output.quiet || output.json);
-    const int maxLevels = index.maxLevelCount();
+    if (recorded.size() < total) pollInterrupt("schedule", recorded.size(), total, "frame", checkpoint);
+    Progress progress("schedule", total - recorded.size(), output.quiet || output.json);
     for (std::size_t i = 0; i < total; ++i) {
-        const int f = frameIndices[i];
-        const scenes::Camera& camera = path.frames[std::size_t(f)];
-        const SavedFrame* saved = i < savedFrames.size() ? &savedFrames[i] : nullptr;
-        FrameRow row;
-        row.frame = f;
-        row.timeSeconds = double(f) / double(path.framesPerSecond);
-        const auto start = std::chrono::steady_clock::now();
-        const scheduler::FrameDecision& decision = frameScheduler.decide(camera, row.timeSeconds);
-        row.decisionMicroseconds =
-            std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-        row.decision = decision;
-        row.predictedMs = decision.predictedMs;
-        finestVisible(frameScheduler, finest);
-        row.finestPredictedMs = predictInLastFrame(frameScheduler, finest);
-        // The unscheduled baseline: the distance thresholds' levels of the visible objects.
-        baseline = frameScheduler.initialLevels();
-        row.baselinePredictedMs = predictInLastFrame(frameScheduler, baseline);
-        row.histogram.assign(std::size_t(maxLevels), 0);
-        for (int level : decision.levels) {
-            if (level != scenes::kNotDrawn) ++row.histogram[std::size_t(level)];
-        }
-        if (saved) {
-            // A replayed frame: the decision above restores the switch-control state; what was
-            // measured comes from the checkpoint, and its feedback restores the model's.
-            if (saved->frame != f || saved->predictedMs != row.predictedMs ||
-                saved->levelsHash != levelsHash(decision.levels)) {
-                throw UsageError(checkpoint + ": frame " + std::to_string(f) +
-                                 " does not replay to the saved decision (scene, path or profile changed?); "
-                                 "delete it to start over");
+        if (i < recorded.size()) {
+            try {
+                rows.push_back(walk.replay(frames[i], recorded[i]));
+            } catch (const evaluation::ReplayMismatch& mismatch) {
+                throw UsageError(checkpoint + ": " + mismatch.what() +
+                                 " (scene, path or profile changed?); delete it to start over");
             }
-            row.decisionMicroseconds = saved->decisionMicroseconds;
-            row.exactPredictedMs = saved->exactPredictedMs;
-            row.measuredMs = saved->measuredMs;
-            row.baselineMeasuredMs = saved->baselineMeasuredMs;
-            row.fitness = saved->fitness;
-            row.baselineFitness = saved->baselineFitness;
-            if (renderer && !options.noFeedback) frameScheduler.reportMeasuredMs(row.measuredMs);
-            row.feedbackScale = frameScheduler.model().feedbackScale();
-            if (row.feedbackScale != saved->feedbackScale) {
-                throw UsageError(checkpoint + ": frame " + std::to_string(f) +
-                                 " replays to another feedback scale; delete it to start over");
-            }
-            rows.push_back(std::move(row));
             continue;
         }
-        if (options.checkFeatures) {
-            // The same levels with the time model's exact features (walks the geometry).
-            const timemodel::FeatureTable table(scene, camera, settings.width, settings.height);
-            row.exactPredictedMs = frameScheduler.model().estimateMs(table.features(decision.levels));
-        }
-        if (renderer) {
-            if (!options.noFitness) {
-                renderer->render(reference, camera, referenceFrame);
-                renderer->render(row.decision.levels, camera, frame);
-                row.fitness = fitnessOf(frame, referenceFrame, metricParameters);
-                if (!options.noBaseline) {
-                    renderer->render(baseline, camera, frame);
-                    row.baselineFitness = fitnessOf(frame, referenceFrame, metricParameters);
-                }
-            }
-            row.measuredMs = renderer->timeRender(row.decision.levels, camera, options.repeats, 1, statistic);
-            if (!options.noBaseline)
-                row.baselineMeasuredMs = renderer->timeRender(baseline, camera, options.repeats, 1, statistic);
-            if (!options.noFeedback) frameScheduler.reportMeasuredMs(row.measuredMs);
-        }
-        row.feedbackScale = frameScheduler.model().feedbackScale();
-        savedFrames.push_back({f, row.decisionMicroseconds, row.measuredMs, row.baselineMeasuredMs, row.fitness,
-                               row.baselineFitness, row.exactPredictedMs, row.predictedMs, row.feedbackScale,
-                               levelsHash(decision.levels)});
-        rows.push_back(std::move(row));
-        progress.step(camera.name);
+        rows.push_back(walk.walk(frames[i]));
+        recorded.push_back(evaluation::record(rows.back()));
+        progress.step(path.frames[std::size_t(frames[i])].name);
         const std::size_t done = i + 1;
         if (done % std::size_t(options.batch) == 0 || done == total) {
-            saveScheduleCheckpoint(checkpoint, identity, savedFrames);
+            saveScheduleCheckpoint(checkpoint, identity, recorded);
             // After the last batch only the outputs are left: finish them rather than stop.
             try {
                 if (done < total) pollInterrupt("schedule", done, total, "frame", checkpoint);
@@ -313,111 +217,137 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
         }
     }
     progress.finish();
+    return rows;
+}
 
-    // The measurement ceiling: the first, middle and last frames' decisions, timed again and again.
-    const MeasurementCeiling ceiling =
-        renderer && options.noiseProbe > 0
-            ? probeMeasurementCeiling(*renderer, path, rows, options.noiseProbe, options.repeats, statistic)
-            : MeasurementCeiling{};
-
-    // Summary.
+// What summary.json holds besides the run's settings.
+struct ScheduleTotals {
     std::vector<double> decisionUs, predicted, measured, baselineMeasured, fitness, baselineFitness, error,
         featureError;
     int switches = 0, forced = 0, protectedFrames = 0, unreachable = 0, overPredicted = 0, dropped = 0;
-    for (const FrameRow& r : rows) {
-        decisionUs.push_back(r.decisionMicroseconds);
-        predicted.push_back(r.predictedMs);
+};
+
+ScheduleTotals totalsOf(const std::vector<evaluation::WalkFrame>& rows) {
+    ScheduleTotals t;
+    for (const evaluation::WalkFrame& r : rows) {
+        t.decisionUs.push_back(r.decisionMicroseconds);
+        t.predicted.push_back(r.predictedMs);
         if (!std::isnan(r.measuredMs)) {
-            measured.push_back(r.measuredMs);
-            error.push_back(std::abs(r.measuredMs - r.predictedMs) / r.measuredMs);
+            t.measured.push_back(r.measuredMs);
+            t.error.push_back(std::abs(r.measuredMs - r.predictedMs) / r.measuredMs);
         }
-        if (!std::isnan(r.baselineMeasuredMs)) baselineMeasured.push_back(r.baselineMeasuredMs);
+        if (!std::isnan(r.baselineMeasuredMs)) t.baselineMeasured.push_back(r.baselineMeasuredMs);
         if (!std::isnan(r.exactPredictedMs) && r.exactPredictedMs > 0.0) {
-            featureError.push_back(std::abs(r.predictedMs - r.exactPredictedMs) / r.exactPredictedMs);
+            t.featureError.push_back(std::abs(r.predictedMs - r.exactPredictedMs) / r.exactPredictedMs);
         }
-        if (!std::isnan(r.fitness)) fitness.push_back(r.fitness);
-        if (!std::isnan(r.baselineFitness)) baselineFitness.push_back(r.baselineFitness);
-        switches += r.decision.switches;
-        forced += r.decision.forcedSwitches;
-        if (r.decision.protectedLowered > 0) ++protectedFrames;
-        if (!r.decision.budgetReachable) ++unreachable;
-        if (!r.decision.budgetMet) ++overPredicted;
-        dropped += r.decision.droppedObjects;
+        if (!std::isnan(r.fitness)) t.fitness.push_back(r.fitness);
+        if (!std::isnan(r.baselineFitness)) t.baselineFitness.push_back(r.baselineFitness);
+        t.switches += r.decision.switches;
+        t.forced += r.decision.forcedSwitches;
+        if (r.decision.protectedLowered > 0) ++t.protectedFrames;
+        if (!r.decision.budgetReachable) ++t.unreachable;
+        if (!r.decision.budgetMet) ++t.overPredicted;
+        t.dropped += r.decision.droppedObjects;
     }
+    return t;
+}
+
+bool reachable(const evaluation::WalkFrame& r) { return r.decision.budgetReachable; }
+double measuredOf(const evaluation::WalkFrame& r) { return r.measuredMs; }
+double baselineOf(const evaluation::WalkFrame& r) { return r.baselineMeasuredMs; }
+
+// Everything a run reports, for summary.json and the text summary.
+struct ScheduleRun {
+    const ScheduleOptions& options;
+    const scenes::Scene& scene;
+    const scenes::CameraPath& path;
+    const renderer::RenderSettings& settings;
+    const scheduler::SchedulerParameters& parameters;
+    scheduler::FeatureMode mode;
+    std::string timeModel;
+    int objects = 0;
+    double setupSeconds = 0.0;
+    double finalFeedbackScale = 1.0;
+    std::vector<evaluation::WalkFrame> rows;
+    evaluation::MeasurementCeiling ceiling;
+};
+
+nlohmann::json summaryJson(const ScheduleRun& run, const ScheduleTotals& t) {
+    const ScheduleOptions& options = run.options;
+    const std::vector<evaluation::WalkFrame>& rows = run.rows;
     const double budget = options.budgetMs;
-    auto reachable = [](const FrameRow& r) { return r.decision.budgetReachable; };
     // Binding: even the finest visible frame is predicted over the budget, so meeting it is
     // the scheduler's doing, not the scene's.
-    auto binding = [&](const FrameRow& r) { return r.decision.budgetReachable && r.finestPredictedMs > budget; };
-    auto measuredOf = [](const FrameRow& r) { return r.measuredMs; };
-    auto baselineOf = [](const FrameRow& r) { return r.baselineMeasuredMs; };
+    auto binding = [&](const evaluation::WalkFrame& r) {
+        return r.decision.budgetReachable && r.finestPredictedMs > budget;
+    };
     nlohmann::json summary = {
-        {"scene", scene.name},
-        {"path", path.name},
+        {"scene", run.scene.name},
+        {"path", run.path.name},
         {"frames", rows.size()},
-        {"frames_per_second", path.framesPerSecond},
+        {"frames_per_second", run.path.framesPerSecond},
         {"budget_ms", budget},
-        {"size", std::to_string(settings.width) + "x" + std::to_string(settings.height)},
+        {"size", std::to_string(run.settings.width) + "x" + std::to_string(run.settings.height)},
         {"shading", options.shading},
-        {"organisation", scheduler::toString(parameters.organisation)},
-        {"features", scheduler::toString(mode)},
-        {"switch_control", parameters.switchControl.enabled},
-        {"switch_rule", scheduler::toString(parameters.switchControl.rule)},
-        {"switch_margin", parameters.switchControl.raiseMargin},
-        {"switch_refill", parameters.switchControl.refillBelow},
+        {"organisation", scheduler::toString(run.parameters.organisation)},
+        {"features", scheduler::toString(run.mode)},
+        {"switch_control", run.parameters.switchControl.enabled},
+        {"switch_rule", scheduler::toString(run.parameters.switchControl.rule)},
+        {"switch_margin", run.parameters.switchControl.raiseMargin},
+        {"switch_refill", run.parameters.switchControl.refillBelow},
         {"feedback", options.render && !options.noFeedback},
         {"frame_time", options.render ? nlohmann::json{{"statistic", options.frameTime}, {"draws", options.repeats}}
                                       : nlohmann::json(nullptr)},
         {"coefficients", options.coefficients.empty() ? "published defaults" : options.coefficients},
-        {"time_model", estimator.name},
-        {"objects", index.objectCount()},
-        {"setup_seconds", setupSeconds},
-        {"decision_us", spreadJson(spreadOf(decisionUs))},
-        {"predicted_ms", spreadJson(spreadOf(predicted))},
-        {"frames_budget_unreachable", unreachable},
-        {"frames_predicted_over_budget", overPredicted},
-        {"frames_protected_lowered", protectedFrames},
+        {"time_model", run.timeModel},
+        {"objects", run.objects},
+        {"setup_seconds", run.setupSeconds},
+        {"decision_us", spreadJson(spreadOf(t.decisionUs))},
+        {"predicted_ms", spreadJson(spreadOf(t.predicted))},
+        {"frames_budget_unreachable", t.unreachable},
+        {"frames_predicted_over_budget", t.overPredicted},
+        {"frames_protected_lowered", t.protectedFrames},
         {"switches",
-         {{"total", switches}, {"per_frame", rows.empty() ? 0.0 : double(switches) / rows.size()}, {"forced", forced}}},
-        {"dropped_objects_per_frame", rows.empty() ? 0.0 : double(dropped) / rows.size()},
-        {"final_feedback_scale", frameScheduler.model().feedbackScale()},
+         {{"total", t.switches},
+          {"per_frame", rows.empty() ? 0.0 : double(t.switches) / rows.size()},
+          {"forced", t.forced}}},
+        {"dropped_objects_per_frame", rows.empty() ? 0.0 : double(t.dropped) / rows.size()},
+        {"final_feedback_scale", run.finalFeedbackScale},
     };
-    if (options.checkFeatures) summary["bounds_vs_exact_prediction_error"] = spreadJson(spreadOf(featureError));
-    if (options.render) {
-        summary["measured_ms"] = spreadJson(spreadOf(measured));
-        summary["prediction_error"] = spreadJson(spreadOf(error));
-        summary["measured_vs_budget"] = {{"reachable", sharesJson(budgetShares(rows, budget, measuredOf, reachable))},
-                                         {"binding", sharesJson(budgetShares(rows, budget, measuredOf, binding))}};
-        if (!options.noBaseline) {
-            summary["baseline_measured_ms"] = spreadJson(spreadOf(baselineMeasured));
-            summary["baseline_vs_budget"] = {
-                {"reachable", sharesJson(budgetShares(rows, budget, baselineOf, reachable))},
-                {"binding", sharesJson(budgetShares(rows, budget, baselineOf, binding))}};
-        }
-        if (!ceiling.json.is_null()) summary["measurement_ceiling"] = ceiling.json;
-        if (!options.noFitness) {
-            summary["fitness"] = spreadJson(spreadOf(fitness));
-            if (!options.noBaseline) summary["baseline_fitness"] = spreadJson(spreadOf(baselineFitness));
-        }
+    if (options.checkFeatures) summary["bounds_vs_exact_prediction_error"] = spreadJson(spreadOf(t.featureError));
+    if (!options.render) return summary;
+    summary["measured_ms"] = spreadJson(spreadOf(t.measured));
+    summary["prediction_error"] = spreadJson(spreadOf(t.error));
+    summary["measured_vs_budget"] = {{"reachable", sharesJson(budgetShares(rows, budget, measuredOf, reachable))},
+                                     {"binding", sharesJson(budgetShares(rows, budget, measuredOf, binding))}};
+    if (!options.noBaseline) {
+        summary["baseline_measured_ms"] = spreadJson(spreadOf(t.baselineMeasured));
+        summary["baseline_vs_budget"] = {{"reachable", sharesJson(budgetShares(rows, budget, baselineOf, reachable))},
+                                         {"binding", sharesJson(budgetShares(rows, budget, baselineOf, binding))}};
     }
-    scenes::writeTextAtomically((dir / "frames.csv").string(), framesCsv(rows, maxLevels));
-    writeJsonFile((dir / "summary.json").string(), summary);
-    std::filesystem::remove(checkpoint);  // every frame is now in the outputs
-    summary["out"] = options.outDir;
-    if (output.json) {
-        printJson(summary);
-        return;
+    const nlohmann::json ceiling = ceilingJson(run.ceiling);
+    if (!ceiling.is_null()) summary["measurement_ceiling"] = ceiling;
+    if (!options.noFitness) {
+        summary["fitness"] = spreadJson(spreadOf(t.fitness));
+        if (!options.noBaseline) summary["baseline_fitness"] = spreadJson(spreadOf(t.baselineFitness));
     }
-    const Spread d = spreadOf(decisionUs);
-    std::cout << scene.name << " / " << path.name << ": " << rows.size() << " frames, budget " << budget << " ms, "
-              << scheduler::toString(parameters.organisation) << ", switch control "
-              << (parameters.switchControl.enabled ? "on" : "off") << "\n"
+    return summary;
+}
+
+void printSummary(const ScheduleRun& run, const ScheduleTotals& t, const std::filesystem::path& dir) {
+    const ScheduleOptions& options = run.options;
+    const std::vector<evaluation::WalkFrame>& rows = run.rows;
+    const double budget = options.budgetMs;
+    const Spread d = spreadOf(t.decisionUs);
+    std::cout << run.scene.name << " / " << run.path.name << ": " << rows.size() << " frames, budget " << budget
+              << " ms, " << scheduler::toString(run.parameters.organisation) << ", switch control "
+              << (run.parameters.switchControl.enabled ? "on" : "off") << "\n"
               << std::fixed << std::setprecision(1) << "  decision " << d.median << " us median, " << d.max
-              << " us max; predicted " << spreadOf(predicted).mean << " ms mean; " << switches << " switches ("
-              << (rows.empty() ? 0.0 : double(switches) / rows.size()) << " per frame)\n";
+              << " us max; predicted " << spreadOf(t.predicted).mean << " ms mean; " << t.switches << " switches ("
+              << (rows.empty() ? 0.0 : double(t.switches) / rows.size()) << " per frame)\n";
     if (options.render) {
         const BudgetShares s = budgetShares(rows, budget, measuredOf, reachable);
-        std::cout << "  measured " << spreadOf(measured).mean << " ms mean; within ±10% of the budget on "
+        std::cout << "  measured " << spreadOf(t.measured).mean << " ms mean; within ±10% of the budget on "
                   << std::setprecision(0) << 100.0 * s.within10 << "% of " << s.frames
                   << " reachable frames, <= 110% on " << 100.0 * s.atMost110 << "%";
         if (!options.noBaseline) {
@@ -425,20 +355,70 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
             std::cout << " (unscheduled: " << 100.0 * b.within10 << "%, " << 100.0 * b.atMost110 << "%)";
         }
         std::cout << "\n";
-        if (!std::isnan(ceiling.mean)) {
-            std::cout << "  measurement ceiling " << 100.0 * ceiling.mean << "%: one frame timed " << options.noiseProbe
-                      << " times fits a ±10% band at best that often (frames";
-            for (int f : ceiling.frames) std::cout << ' ' << f;
+        if (!std::isnan(run.ceiling.ceiling)) {
+            std::cout << "  measurement ceiling " << 100.0 * run.ceiling.ceiling << "%: one frame timed "
+                      << options.noiseProbe << " times fits a ±10% band at best that often (frames";
+            for (const evaluation::CeilingProbe& p : run.ceiling.probes) std::cout << ' ' << p.frame;
             std::cout << ")\n";
         }
         if (!options.noFitness) {
-            std::cout << std::setprecision(4) << "  fitness " << spreadOf(fitness).mean << " mean";
-            if (!options.noBaseline) std::cout << " (unscheduled " << spreadOf(baselineFitness).mean << ")";
+            std::cout << std::setprecision(4) << "  fitness " << spreadOf(t.fitness).mean << " mean";
+            if (!options.noBaseline) std::cout << " (unscheduled " << spreadOf(t.baselineFitness).mean << ")";
             std::cout << "\n";
         }
     }
     std::cout << "  wrote " << (dir / "frames.csv").string() << " and summary.json\n";
     std::cout.unsetf(std::ios::floatfield);
+}
+
+void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
+    renderer::RenderSettings settings;
+    parseSize(options.size, settings.width, settings.height);
+    settings.shading = renderer::parseShading(options.shading);
+    const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
+    if (scene.objects.empty()) throw UsageError("scene '" + scene.name + "' has no objects");
+    const scenes::CameraPath path =
+        options.path.empty() ? defaultCameraPath(scene) : loadCameraPath(scene, options.path);
+    const std::vector<int> frames = scheduledFrames(options, path);
+
+    std::unique_ptr<renderer::Renderer> renderer;
+    if (options.render) renderer = std::make_unique<renderer::Renderer>(scene, settings);
+    const TimeEstimator estimator = loadTimeEstimator(options.profile, options.model, scene.name, settings,
+                                                      renderer ? renderer->glRendererString() : "", std::cerr);
+    const scheduler::SchedulerParameters parameters = schedulerParameters(options);
+    const scheduler::FeatureMode mode = parseFeatureMode(options.features);
+
+    const std::filesystem::path dir(options.outDir);
+    const std::string checkpoint = (dir / "schedule.checkpoint.json").string();
+    const nlohmann::json identity = checkpointIdentity(options, parameters);
+    std::vector<evaluation::RecordedFrame> restored = restoredFrames(options, output, checkpoint, identity, frames.size());
+
+    const auto setupStart = std::chrono::steady_clock::now();
+    const scheduler::SceneIndex index(scene, settings.width, settings.height, mode, 0, estimator.model->readFeatures());
+    scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
+    ScheduleRun run{options, scene, path, settings, parameters, mode, estimator.name, index.objectCount(), 0.0, 1.0, {}, {}};
+    run.setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
+
+    evaluation::ScheduleWalk walk(scene, path, frameScheduler, renderer.get(), walkOptions(options));
+    run.rows = walkFrames(walk, options, output, path, frames, checkpoint, identity, std::move(restored));
+    run.finalFeedbackScale = frameScheduler.model().feedbackScale();
+    if (renderer && options.noiseProbe > 0) {
+        const evaluation::WalkOptions timing = walkOptions(options);
+        run.ceiling = evaluation::probeMeasurementCeiling(*renderer, path, run.rows, options.noiseProbe,
+                                                          options.repeats, timing.statistic);
+    }
+
+    const ScheduleTotals totals = totalsOf(run.rows);
+    nlohmann::json summary = summaryJson(run, totals);
+    scenes::writeTextAtomically((dir / "frames.csv").string(), framesCsv(run.rows, index.maxLevelCount()));
+    writeJsonFile((dir / "summary.json").string(), summary);
+    std::filesystem::remove(checkpoint);  // every frame is now in the outputs
+    summary["out"] = options.outDir;
+    if (output.json) {
+        printJson(summary);
+        return;
+    }
+    printSummary(run, totals, dir);
 }
 
 }  // namespace

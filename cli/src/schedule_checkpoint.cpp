@@ -12,24 +12,15 @@ constexpr const char* kFormat = "lodopt-schedule-checkpoint/1";
 
 }  // namespace
 
-std::uint64_t levelsHash(const scenes::Combination& levels) {
-    std::uint64_t hash = 14695981039346656037ull;
-    for (int level : levels) {
-        hash ^= std::uint64_t(std::uint32_t(level));
-        hash *= 1099511628211ull;
-    }
-    return hash;
-}
-
-std::vector<SavedFrame> loadScheduleCheckpoint(const std::string& path, const nlohmann::json& identity) {
-    std::vector<SavedFrame> frames;
+std::vector<evaluation::RecordedFrame> loadScheduleCheckpoint(const std::string& path, const nlohmann::json& identity) {
+    std::vector<evaluation::RecordedFrame> frames;
     try {
         std::ifstream in(path);
         const nlohmann::json saved = nlohmann::json::parse(in);
         if (saved.at("format") != kFormat) throw std::invalid_argument("unknown format");
         checkIdentity(path, saved.at("options"), identity);
         for (const nlohmann::json& item : saved.at("frames")) {
-            SavedFrame f;
+            evaluation::RecordedFrame f;
             f.frame = item.at("frame").get<int>();
             f.decisionMicroseconds = numberOrNaN(item.at("decision_us"));
             f.measuredMs = numberOrNaN(item.at("measured_ms"));
@@ -51,9 +42,9 @@ std::vector<SavedFrame> loadScheduleCheckpoint(const std::string& path, const nl
 }
 
 void saveScheduleCheckpoint(const std::string& path, const nlohmann::json& identity,
-                            const std::vector<SavedFrame>& frames) {
+                            const std::vector<evaluation::RecordedFrame>& frames) {
     nlohmann::json list = nlohmann::json::array();
-    for (const SavedFrame& f : frames) {
+    for (const evaluation::RecordedFrame& f : frames) {
         list.push_back({{"frame", f.frame},
                         {"decision_us", f.decisionMicroseconds},
                         {"measured_ms", f.measuredMs},

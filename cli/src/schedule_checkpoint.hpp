@@ -12,32 +12,15 @@
 #include <string>
 #include <vector>
 
-#include "scenes/scene.hpp"
+#include "evaluation/schedule_walk.hpp"
 
 namespace lodopt::cli {
 
-struct SavedFrame {
-    int frame = 0;  // index in the camera path
-    double decisionMicroseconds = 0.0;
-    double measuredMs = 0.0;  // NaN when not rendered
-    double baselineMeasuredMs = 0.0;
-    double fitness = 0.0;
-    double baselineFitness = 0.0;
-    double exactPredictedMs = 0.0;  // NaN without --check-features
-    // Checks of the replay: it must reproduce these exactly.
-    double predictedMs = 0.0;
-    double feedbackScale = 1.0;  // after this frame's feedback
-    std::uint64_t levelsHash = 0;
-};
-
-// FNV-1a over the levels: the replay's decision must hash alike.
-std::uint64_t levelsHash(const scenes::Combination& levels);
-
 // The frames saved by an interrupted schedule whose options equal `identity` (keyed by option
 // name). Throws UsageError naming the option that differs, or saying that the file is unreadable.
-std::vector<SavedFrame> loadScheduleCheckpoint(const std::string& path, const nlohmann::json& identity);
+std::vector<evaluation::RecordedFrame> loadScheduleCheckpoint(const std::string& path, const nlohmann::json& identity);
 // Writes `frames` with `identity` atomically.
 void saveScheduleCheckpoint(const std::string& path, const nlohmann::json& identity,
-                            const std::vector<SavedFrame>& frames);
+                            const std::vector<evaluation::RecordedFrame>& frames);
 
 }  // namespace lodopt::cli

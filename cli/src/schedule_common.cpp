@@ -160,21 +160,4 @@ scheduler::SchedulerCoefficients loadCoefficientsOrThrow(const std::string& path
     }
 }
 
-double predictInLastFrame(const scheduler::FrameScheduler& s, const scenes::Combination& levels) {
-    const scheduler::SceneIndex& index = s.index();
-    timemodel::FrameFeatures features = index.frameConstant();
-    for (int o = 0; o < index.objectCount(); ++o) {
-        if (levels[o] == scenes::kNotDrawn) continue;
-        features += s.frame().contributions[std::size_t(index.firstLevel(o) + levels[o])];
-    }
-    return s.model().estimateMs(features);
-}
-
-void finestVisible(const scheduler::FrameScheduler& s, scenes::Combination& levels) {
-    levels.assign(std::size_t(s.index().objectCount()), scenes::kNotDrawn);
-    for (std::size_t o = 0; o < levels.size(); ++o) {
-        if (s.frame().visible[o]) levels[o] = 0;
-    }
-}
-
 }  // namespace lodopt::cli

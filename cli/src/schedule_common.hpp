@@ -1,5 +1,5 @@
 // Shared by `lodopt tune` and `lodopt schedule`: camera paths from the scene or a file, option
-// parsing for the scheduler, and predictions for any combination of the scheduler's last frame.
+// parsing for the scheduler, and cameras as JSON.
 //
 // A camera path file is JSON:
 //   {"name": "walk", "frames_per_second": 30,
@@ -34,12 +34,6 @@ void parseSwitchControl(const std::string& text, scheduler::SwitchControlParamet
 scheduler::SwitchRule parseSwitchRule(const std::string& text);
 // A coefficients file; throws UsageError with the file's message.
 scheduler::SchedulerCoefficients loadCoefficientsOrThrow(const std::string& path);
-
-// Predicted ms of `levels` in the scheduler's last frame (every drawn object must have been
-// visible in it), with the scheduler's current model.
-double predictInLastFrame(const scheduler::FrameScheduler& scheduler, const scenes::Combination& levels);
-// `levels` with every visible object of the last frame at level 0 and the others not drawn.
-void finestVisible(const scheduler::FrameScheduler& scheduler, scenes::Combination& levels);
 
 // Camera as JSON (position, target, up, fov, near, far) for reports and checkpoints.
 nlohmann::json cameraToJson(const scenes::Camera& camera);

@@ -12,7 +12,7 @@ std::string csvNumber(double value) {
     return out.str();
 }
 
-std::string framesCsv(const std::vector<FrameRow>& rows, int maxLevels) {
+std::string framesCsv(const std::vector<evaluation::WalkFrame>& rows, int maxLevels) {
     std::ostringstream csv;
     csv << "frame,time_s,decision_us,predicted_ms,measured_ms,finest_predicted_ms,baseline_predicted_ms,"
            "baseline_measured_ms,exact_predicted_ms,budget_reachable,budget_met,fitness,baseline_fitness,visible,"
@@ -20,7 +20,7 @@ std::string framesCsv(const std::vector<FrameRow>& rows, int maxLevels) {
            "protected_lowered,forced_switches,switches,held,feedback_scale";
     for (int l = 0; l < maxLevels; ++l) csv << ",level_" << l;
     csv << "\n";
-    for (const FrameRow& r : rows) {
+    for (const evaluation::WalkFrame& r : rows) {
         const scheduler::FrameDecision& d = r.decision;
         const int drawn = d.visibleObjects - d.droppedObjects;
         csv << r.frame << ',' << csvNumber(r.timeSeconds) << ',' << csvNumber(r.decisionMicroseconds) << ','

@@ -8,32 +8,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "evaluation/schedule_walk.hpp"
 #include "schedule_common.hpp"
-#include "scheduler/scheduler.hpp"
 
 namespace lodopt::cli {
-
-struct FrameRow {
-    int frame = 0;
-    double timeSeconds = 0.0;
-    double decisionMicroseconds = 0.0;
-    double predictedMs = 0.0;
-    double finestPredictedMs = 0.0;
-    double baselinePredictedMs = 0.0;
-    double exactPredictedMs = NAN;
-    double measuredMs = NAN;
-    double baselineMeasuredMs = NAN;
-    double fitness = NAN;
-    double baselineFitness = NAN;
-    double feedbackScale = 1.0;
-    scheduler::FrameDecision decision;
-    std::vector<int> histogram;
-};
 
 // A number as frames.csv writes it: 8 significant digits, empty for NaN.
 std::string csvNumber(double value);
 // frames.csv: one line per row, with `maxLevels` level-histogram columns.
-std::string framesCsv(const std::vector<FrameRow>& rows, int maxLevels);
+std::string framesCsv(const std::vector<evaluation::WalkFrame>& rows, int maxLevels);
 
 // Share of `rows` (those `counted`) whose `value` lies within ±10% of the budget, or at most 10%
 // above it.
@@ -43,10 +26,10 @@ struct BudgetShares {
     double atMost110 = 0.0;
 };
 template <typename Value, typename Counted>
-BudgetShares budgetShares(const std::vector<FrameRow>& rows, double budget, Value value, Counted counted) {
+BudgetShares budgetShares(const std::vector<evaluation::WalkFrame>& rows, double budget, Value value, Counted counted) {
     BudgetShares shares;
     int within = 0, atMost = 0;
-    for (const FrameRow& r : rows) {
+    for (const evaluation::WalkFrame& r : rows) {
         const double v = value(r);
         if (!counted(r) || std::isnan(v)) continue;
         ++shares.frames;
