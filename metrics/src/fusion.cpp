@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "kernels.hpp"
+#include "prepared_reference.hpp"
 
 namespace lodopt::metrics {
 
@@ -132,13 +133,7 @@ MetricResult evaluate(const ImageView& candidate, const ImageView& reference, co
         result.informationEntropy.reference = informationEntropy(reference, parameters);
     }
     if (parameters.computePrecisionRecall) {
-        const PrecisionRecall pr = precisionRecall(candidate, reference, parameters);
-        result.precisionRecallComputed = true;
-        result.truePositives = pr.truePositives;
-        result.falsePositives = pr.falsePositives;
-        result.falseNegatives = pr.falseNegatives;
-        result.precision = pr.precision;
-        result.recall = pr.recall;
+        detail::setPrecisionRecall(result, precisionRecall(candidate, reference, parameters));
     }
     fuse(result, parameters);
     return result;

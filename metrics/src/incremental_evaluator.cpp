@@ -14,6 +14,7 @@
 
 #include "kernels.hpp"
 #include "parts.hpp"
+#include "prepared_reference.hpp"
 
 namespace lodopt::metrics {
 
@@ -23,30 +24,22 @@ namespace {
 constexpr std::uint64_t kLiveShareNumerator = 1, kLiveShareDenominator = 2;
 }  // namespace
 
-struct IncrementalEvaluator::State {
-    MetricParameters parameters;
-    int width = 0, height = 0, channels = 0;
-    detail::GrayScale grayScale;
-    bool ssimOn = false, boundaryOn = false, informationOn = false, precisionRecallOn = false;
+struct IncrementalEvaluator::State : detail::PreparedReference {
+    bool precisionRecallOn = false;
 
-    std::vector<std::int32_t> candidateGray, referenceGray, rowGray;
+    std::vector<std::int32_t> candidateGray, rowGray;
     std::vector<std::uint16_t> rowBins;
     std::vector<std::uint8_t> rowClasses, rowGrayBins;
 
-    detail::SsimKernel kernel;
-    std::vector<double> referenceMean, referenceVariance;
     detail::FixedPooledMap ssimMap;
     detail::SsimScratch scratch;
 
-    double boundaryReference = 0;
-    detail::SobelBinning sobel;
     std::vector<std::uint16_t> sobelBins;           // per pixel (interior ones used)
     std::vector<std::uint64_t> boundaryHistogram;   // Histogram mode
     detail::LaneHistogram boundaryLanes;
     std::uint64_t interiorPixels = 0;
     detail::PooledMap robertsTerms;                 // Paper mode
 
-    double informationReference = 0;
     std::array<std::uint64_t, 256> grayHistogram{};  // Histogram mode
     detail::LaneHistogram grayLanes;
     detail::PooledMap intensityTerms;               // Paper mode
@@ -78,38 +71,16 @@ struct IncrementalEvaluator::State {
 
 IncrementalEvaluator::IncrementalEvaluator(const ImageView& reference, const MetricParameters& parameters)
     : mState(std::make_unique<State>()) {
-    validateParameters(parameters);
-    detail::validateView(reference, "reference image");
     State& s = *mState;
-    s.parameters = parameters;
-    s.width = reference.width;
-    s.height = reference.height;
-    s.channels = reference.channels;
-    s.grayScale = detail::grayScale(parameters.grayWeights);
-    s.ssimOn = parameters.ssimWeight > 0;
-    s.boundaryOn = parameters.boundaryEntropyWeight > 0;
-    s.informationOn = parameters.informationEntropyWeight > 0;
+    detail::prepareReference(reference, parameters, s, s.scratch);
     s.precisionRecallOn = parameters.computePrecisionRecall;
     const std::size_t pixels = std::size_t(s.width) * s.height;
 
     s.candidateGray.assign(pixels, 0);
     s.rowGray.assign(std::size_t(s.width), 0);
-    if (s.ssimOn) {
-        s.kernel = detail::makeSsimKernel(parameters, s.width, s.height, s.grayScale);
-        detail::grayImage(reference, s.grayScale, s.referenceGray);
-        const std::size_t mapSize = std::size_t(s.kernel.mapWidth) * s.kernel.mapHeight;
-        s.referenceMean.assign(mapSize, 0.0);
-        s.referenceVariance.assign(mapSize, 0.0);
-        s.scratch.reserve(s.kernel);
-        detail::ssimReferenceStatistics(s.referenceGray.data(), std::size_t(s.width), s.kernel, 0, 0,
-                                        s.kernel.mapWidth, s.kernel.mapHeight, s.scratch, s.referenceMean.data(),
-                                        s.referenceVariance.data(), std::size_t(s.kernel.mapWidth));
-        s.ssimMap.resize(s.kernel.mapWidth, s.kernel.mapHeight);
-    }
+    if (s.ssimOn) s.ssimMap.resize(s.kernel.mapWidth, s.kernel.mapHeight);
     if (s.boundaryOn) {
-        s.boundaryReference = boundaryEntropy(reference, parameters);
         if (parameters.boundaryEntropyMode == EntropyMode::Histogram) {
-            s.sobel = detail::makeSobelBinning(parameters.boundaryHistogramBins, s.grayScale);
             s.sobelBins.assign(pixels, 0);
             s.boundaryHistogram.assign(std::size_t(s.sobel.bins), 0);
             s.interiorPixels = std::uint64_t(std::max(s.width - 2, 0)) * std::uint64_t(std::max(s.height - 2, 0));
@@ -121,7 +92,6 @@ IncrementalEvaluator::IncrementalEvaluator(const ImageView& reference, const Met
         }
     }
     if (s.informationOn) {
-        s.informationReference = informationEntropy(reference, parameters);
         if (parameters.informationEntropyMode == EntropyMode::Histogram) {
             s.grayHistogram[0] = pixels;
             s.grayLanes.resize(256);
@@ -514,13 +484,8 @@ MetricResult IncrementalEvaluator::result() const {
                 : detail::intensityShareEntropy(s.intensitySum, s.intensityTerms.total(), pixels);
     }
     if (s.precisionRecallOn) {
-        const PrecisionRecall pr = precisionRecallFromCounts(s.truePositives, s.falsePositives, s.falseNegatives);
-        result.precisionRecallComputed = true;
-        result.truePositives = pr.truePositives;
-        result.falsePositives = pr.falsePositives;
-        result.falseNegatives = pr.falseNegatives;
-        result.precision = pr.precision;
-        result.recall = pr.recall;
+        detail::setPrecisionRecall(result,
+                                   precisionRecallFromCounts(s.truePositives, s.falsePositives, s.falseNegatives));
     }
     fuse(result, s.parameters);
     return result;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "kernels.hpp"
+#include "prepared_reference.hpp"
 
 namespace lodopt::metrics {
 
@@ -28,17 +29,7 @@ void WindowTotals::add(SsimFixedSum setSsim, std::span<const BinCount> setGray, 
     for (const auto& [bin, count] : setSobel) sobel[bin] += sign * std::int64_t(count);
 }
 
-struct RegionScorer::State {
-    MetricParameters parameters;
-    int width = 0, height = 0, channels = 0;
-    detail::GrayScale grayScale;
-    bool ssimOn = false, boundaryOn = false, informationOn = false;
-    detail::SsimKernel kernel;
-    std::vector<std::int32_t> referenceGray;
-    std::vector<double> referenceMean, referenceVariance;
-    detail::SobelBinning sobel;
-    double boundaryReference = 0, informationReference = 0;
-};
+struct RegionScorer::State : detail::PreparedReference {};
 
 class RegionScorer::Work {
 public:
@@ -62,36 +53,11 @@ bool RegionScorer::supports(const MetricParameters& parameters) {
 RegionScorer::RegionScorer(const ImageView& reference, const MetricParameters& parameters)
     : mState(std::make_unique<State>()) {
     validateParameters(parameters);
-    detail::validateView(reference, "reference image");
     if (!supports(parameters)) {
         throw MetricError("region scores need the histogram entropies and no precision/recall");
     }
-    State& s = *mState;
-    s.parameters = parameters;
-    s.width = reference.width;
-    s.height = reference.height;
-    s.channels = reference.channels;
-    s.grayScale = detail::grayScale(parameters.grayWeights);
-    s.ssimOn = parameters.ssimWeight > 0;
-    s.boundaryOn = parameters.boundaryEntropyWeight > 0;
-    s.informationOn = parameters.informationEntropyWeight > 0;
-    if (s.ssimOn) {
-        s.kernel = detail::makeSsimKernel(parameters, s.width, s.height, s.grayScale);
-        detail::grayImage(reference, s.grayScale, s.referenceGray);
-        const std::size_t mapSize = std::size_t(s.kernel.mapWidth) * s.kernel.mapHeight;
-        s.referenceMean.assign(mapSize, 0.0);
-        s.referenceVariance.assign(mapSize, 0.0);
-        detail::SsimScratch scratch;
-        scratch.reserve(s.kernel);
-        detail::ssimReferenceStatistics(s.referenceGray.data(), std::size_t(s.width), s.kernel, 0, 0,
-                                        s.kernel.mapWidth, s.kernel.mapHeight, scratch, s.referenceMean.data(),
-                                        s.referenceVariance.data(), std::size_t(s.kernel.mapWidth));
-    }
-    if (s.boundaryOn) {
-        s.boundaryReference = boundaryEntropy(reference, parameters);
-        s.sobel = detail::makeSobelBinning(parameters.boundaryHistogramBins, s.grayScale);
-    }
-    if (s.informationOn) s.informationReference = informationEntropy(reference, parameters);
+    detail::SsimScratch scratch;
+    detail::prepareReference(reference, parameters, *mState, scratch);
 }
 
 RegionScorer::~RegionScorer() = default;
