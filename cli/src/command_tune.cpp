@@ -28,6 +28,7 @@
 
 #include "cli_common.hpp"
 #include "evaluation/evaluation.hpp"
+#include "evaluation/scheduler_tuning.hpp"
 #include "evaluation/time_cost.hpp"
 #include "interrupt.hpp"
 #include "optimize_run.hpp"
@@ -54,21 +55,6 @@ struct TuneOptions {
     std::string select = "tuning";
     int folds = 3;
     bool resume = false;
-};
-
-// One tuning or held-out view: its prepared evaluation and the optimizer's answer.
-struct TuneView {
-    scenes::Camera camera;
-    bool heldOut = false;
-    int fold = -1;  // cross-validation fold of a tuning view
-    bool resumed = false;
-    std::unique_ptr<evaluation::ViewSetup> setup;
-    std::unique_ptr<optimizer::Evaluator> evaluator;
-    std::unique_ptr<evaluation::TimeModelCost> cost;
-    scenes::Combination optimizerLevels;
-    double optimizerFitness = 0.0;
-    double optimizerSeconds = 0.0;
-    std::map<optimizer::Combination, double> cache;  // fitness of combinations already scored
 };
 
 // The options that change a view's optimizer answer, keyed by option name (checkIdentity).
@@ -145,88 +131,20 @@ std::vector<scenes::Camera> sampleCameras(const scenes::Scene& scene, const Tune
     return cameras;
 }
 
-// Fitness of the scheduler's choice on `view` with `coefficients`, as a share of the optimizer's.
-double schedulerFraction(TuneView& view, scheduler::FrameScheduler& frameScheduler,
-                         const scheduler::SchedulerCoefficients& coefficients, double* fitnessOut = nullptr,
-                         double* predictedOut = nullptr) {
-    frameScheduler.setCoefficients(coefficients);
-    frameScheduler.reset();
-    const scheduler::FrameDecision& decision = frameScheduler.decide(view.camera, 0.0);
-    const optimizer::Combination combination = view.setup->fromScene(decision.levels);
-    auto it = view.cache.find(combination);
-    if (it == view.cache.end())
-        it = view.cache.emplace(combination, view.evaluator->evaluate(combination).fitness).first;
-    if (fitnessOut) *fitnessOut = it->second;
-    // The exact features of the view (the optimizer's cost) for the scheduler's levels.
-    if (predictedOut) *predictedOut = view.cost->predictSceneMs(decision.levels);
-    return view.optimizerFitness > 0.0 ? it->second / view.optimizerFitness : 0.0;
-}
-
-// Mean fraction over the views `keep` accepts.
-template <class Keep>
-double meanFractionOver(std::vector<TuneView>& views, scheduler::FrameScheduler& frameScheduler,
-                        const scheduler::SchedulerCoefficients& coefficients, Keep keep) {
-    double sum = 0.0;
-    int count = 0;
-    for (TuneView& view : views) {
-        if (!keep(view)) continue;
-        sum += schedulerFraction(view, frameScheduler, coefficients);
-        ++count;
-    }
-    return count > 0 ? sum / count : 0.0;
-}
-
-double meanFraction(std::vector<TuneView>& views, bool heldOut, scheduler::FrameScheduler& frameScheduler,
-                    const scheduler::SchedulerCoefficients& coefficients) {
-    return meanFractionOver(views, frameScheduler, coefficients,
-                            [heldOut](const TuneView& view) { return view.heldOut == heldOut; });
-}
-
-// The compass search from the published defaults, maximising the mean fraction over the
-// views `keep` accepts.
-template <class Keep>
-scheduler::PatternSearchResult searchOver(std::vector<TuneView>& views, scheduler::FrameScheduler& frameScheduler,
-                                          const scheduler::TuningSpace& space,
-                                          const scheduler::PatternSearchOptions& searchOptions, Keep keep) {
-    auto objective = [&](const std::vector<double>& x) {
-        return meanFractionOver(views, frameScheduler, space.coefficientsAt(x), keep);
-    };
-    return scheduler::patternSearch(objective, space.pointOf(scheduler::SchedulerCoefficients{}), space.lower(),
-                                    space.upper(), space.steps(), searchOptions);
-}
-
-// k-fold cross-validation of one form: each fold of the tuning views is scored with the
-// coefficients searched on the other folds; the mean over all tuning views.
-double crossValidatedFraction(std::vector<TuneView>& views, scheduler::FrameScheduler& frameScheduler,
-                              const scheduler::TuningSpace& space, const scheduler::PatternSearchOptions& searchOptions,
-                              int folds) {
-    double sum = 0.0;
-    int count = 0;
-    for (int f = 0; f < folds; ++f) {
-        const scheduler::PatternSearchResult search = searchOver(
-            views, frameScheduler, space, searchOptions, [f](const TuneView& v) { return !v.heldOut && v.fold != f; });
-        const scheduler::SchedulerCoefficients fitted = space.coefficientsAt(search.best);
-        for (TuneView& view : views) {
-            if (view.heldOut || view.fold != f) continue;
-            sum += schedulerFraction(view, frameScheduler, fitted);
-            ++count;
-        }
-    }
-    return count > 0 ? sum / count : NAN;
-}
-
 nlohmann::json coefficientsJson(const scheduler::SchedulerCoefficients& c) {
     return nlohmann::json::parse(scheduler::coefficientsToJson(c));
 }
 
-void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vector<TuneView>& views,
-                  const OutputOptions& output) {
+// Each view's optimizer answer, from its checkpoint with --resume (`resumed`) or searched and
+// checkpointed; then its cost and the answer's fitness by the view's evaluator.
+void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vector<evaluation::TuningView>& views,
+                  std::vector<bool>& resumed, const OutputOptions& output) {
     const std::filesystem::path dir = checkpointDir(options.out);
     const nlohmann::json signature = settingsSignature(options);
     Progress progress("tune: optimizer per view", views.size(), output.quiet);
     InterruptGuard interruptGuard;
     for (std::size_t k = 0; k < views.size(); ++k) {
-        TuneView& view = views[k];
+        evaluation::TuningView& view = views[k];
         std::ostringstream name;
         name << "view_" << std::setw(3) << std::setfill('0') << k << ".json";
         const std::filesystem::path checkpoint = dir / name.str();
@@ -248,7 +166,7 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
             }
             view.optimizerLevels = saved["combination"].get<scenes::Combination>();
             view.optimizerSeconds = saved.value("seconds", 0.0);
-            view.resumed = true;
+            resumed[k] = true;
             scenes::validateCombination(prepared.scene, view.optimizerLevels);
             view.setup = std::make_unique<evaluation::ViewSetup>(prepared.scene, view.camera, *prepared.renderer);
             view.evaluator = std::make_unique<evaluation::LayerEvaluator>(
@@ -279,7 +197,7 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
         view.cost = std::make_unique<evaluation::TimeModelCost>(*view.setup, prepared.estimator, prepared.readFeatures);
         // Scored here with the same evaluator as every scheduler choice, resumed or not.
         view.optimizerFitness = view.evaluator->evaluate(view.setup->fromScene(view.optimizerLevels)).fitness;
-        progress.step(view.camera.name + (view.resumed ? " (resumed)" : ""));
+        progress.step(view.camera.name + (resumed[k] ? " (resumed)" : ""));
         // After the last view only the coefficient search is left: finish it rather than stop.
         try {
             if (k + 1 < views.size()) pollInterrupt("tune", k + 1, views.size(), "view", dir.string());
@@ -291,174 +209,136 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
     progress.finish();
 }
 
-void runTune(TuneOptions options, const OutputOptions& output) {
-    checkAlgorithmName(options.optimize.algorithm);
-    if (options.views < 2) throw UsageError("--views: at least 2 (tuning and held-out views)");
-    const int holdout = options.holdout > 0 ? options.holdout : std::max(1, options.views / 4);
-    if (holdout >= options.views) {
-        throw UsageError("--holdout " + std::to_string(holdout) + ": must leave at least one of the " +
-                         std::to_string(options.views) + " views for tuning");
+// What one tune run decided and measured, for the report and the text summary.
+struct TuneRun {
+    explicit TuneRun(const TuneOptions& tuneOptions) : options(tuneOptions) {}
+    const TuneOptions& options;
+    int holdout = 1;
+    int folds = 0;  // >= 2 when choosing by cross-validation
+    std::string sceneName;
+    std::string timeModel;
+    scheduler::FeatureMode mode = scheduler::FeatureMode::Bounds;
+    scheduler::Organisation organisation = scheduler::Organisation::Flat;
+    evaluation::TuningSettings settings;
+    evaluation::TuningOutcome outcome;
+    double seconds = 0.0;
+    bool crossValidated() const { return outcome.crossValidated; }
+    bool keptDefaults() const { return outcome.chosen < 0; }
+    std::string writtenName() const {
+        return keptDefaults() ? std::string("defaults")
+                              : scheduler::toString(outcome.forms[std::size_t(outcome.chosen)].form);
     }
-    refuseExistingCheckpoints(options);
-    const auto start = std::chrono::steady_clock::now();
-    options.optimize.view = "0";
-    // One evaluator per view stays alive for the whole run: one state per thread, not the
-    // optimizer's default four (memory grows with the view count).
-    options.optimize.evalStates = 1;
-    PreparedScene prepared = prepareScene(options.optimize);
-    const std::vector<scenes::Camera> cameras = sampleCameras(prepared.scene, options);
-    std::vector<TuneView> views(cameras.size());
-    const std::vector<bool> heldOutFlags = scheduler::heldOutViews(options.views, holdout);
-    // Cross-validation needs two folds of at least one tuning view each.
-    const int folds = std::min(options.folds, options.views - holdout);
-    const bool crossValidate = options.select == "cv" && folds >= 2;
-    if (options.select == "cv" && !crossValidate) {
-        std::cerr << "lodopt: warning: --select cv needs at least 2 tuning views (this run has "
-                  << options.views - holdout << "); choosing by the tuning score\n";
-    }
-    const std::vector<int> foldOf = scheduler::tuningFolds(heldOutFlags, folds);
-    for (int k = 0; k < options.views; ++k) {
-        views[std::size_t(k)].camera = cameras[std::size_t(k)];
-        views[std::size_t(k)].heldOut = heldOutFlags[std::size_t(k)];
-        views[std::size_t(k)].fold = foldOf[std::size_t(k)];
-    }
-    prepareViews(options, prepared, views, output);
+};
 
-    const scheduler::FeatureMode mode = parseFeatureMode(options.features);
-    const scheduler::SceneIndex index(prepared.scene, prepared.settings.width, prepared.settings.height, mode, 0,
-                                      prepared.readFeatures);
-    scheduler::SchedulerParameters parameters;
-    parameters.budgetMs = options.optimize.budgetMs;
-    parameters.switchControl.enabled = false;  // single views: nothing to hold
-    parameters.organisation = parseOrganisation(options.organisation);
-    // The model the optimizer's cost used, without feedback (its warnings were printed once
-    // already by prepareScene).
-    std::ostringstream repeatedWarnings;
-    const TimeEstimator estimator =
-        loadTimeEstimator(options.optimize.profile, options.optimize.model, prepared.scene.name, prepared.settings,
-                          prepared.renderer->glRendererString(), repeatedWarnings);
-    scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
+// --views views with their held-out flags and cross-validation folds (--holdout, --folds).
+std::vector<evaluation::TuningView> assignViews(const std::vector<scenes::Camera>& cameras, const TuneRun& run) {
+    const int count = int(cameras.size());
+    const std::vector<bool> heldOut = scheduler::heldOutViews(count, run.holdout);
+    const std::vector<int> foldOf = scheduler::tuningFolds(heldOut, std::max(run.folds, 1));
+    std::vector<evaluation::TuningView> views(cameras.size());
+    for (std::size_t k = 0; k < views.size(); ++k) {
+        views[k].camera = cameras[k];
+        views[k].heldOut = heldOut[k];
+        views[k].fold = foldOf[k];
+    }
+    return views;
+}
 
+evaluation::TuningSettings tuningSettings(const TuneRun& run, const scheduler::SceneIndex& index,
+                                          const std::vector<evaluation::TuningView>& views) {
     std::vector<scenes::Camera> tuningCameras;
-    for (const TuneView& view : views) {
+    for (const evaluation::TuningView& view : views) {
         if (!view.heldOut) tuningCameras.push_back(view.camera);
     }
-    const scheduler::TermScales scales = scheduler::measureTermScales(index, tuningCameras);
-    const int thresholdCount = std::max(1, index.maxLevelCount() - 1);
+    evaluation::TuningSettings settings;
+    settings.scales = scheduler::measureTermScales(index, tuningCameras);
+    settings.thresholdCount = std::max(1, index.maxLevelCount() - 1);
+    const std::string& form = run.options.form;
+    if (form == "published" || form == "auto") settings.forms.push_back(scheduler::ImportanceForm::Published);
+    if (form == "extended" || form == "auto") settings.forms.push_back(scheduler::ImportanceForm::Extended);
+    settings.search.maxEvaluations = run.options.searchEvaluations;
+    settings.search.seed = run.options.optimize.seed;
+    settings.folds = run.folds;
+    return settings;
+}
+
+nlohmann::json perViewJson(std::vector<evaluation::TuningView>& views, const std::vector<bool>& resumed,
+                           scheduler::FrameScheduler& frameScheduler, const scheduler::SchedulerCoefficients& written) {
     const scheduler::SchedulerCoefficients defaults;
-
-    std::vector<scheduler::ImportanceForm> forms;
-    if (options.form == "published" || options.form == "auto") forms.push_back(scheduler::ImportanceForm::Published);
-    if (options.form == "extended" || options.form == "auto") forms.push_back(scheduler::ImportanceForm::Extended);
-    struct FormResult {
-        scheduler::ImportanceForm form;
-        scheduler::SchedulerCoefficients coefficients;
-        scheduler::PatternSearchResult search;
-        double heldOutMean = 0.0;
-        double crossValidated = NAN;  // mean out-of-fold fraction over the tuning views
-    };
-    std::vector<FormResult> results;
-    for (scheduler::ImportanceForm form : forms) {
-        const scheduler::TuningSpace space(form, scales, thresholdCount);
-        scheduler::PatternSearchOptions searchOptions;
-        searchOptions.maxEvaluations = options.searchEvaluations;
-        searchOptions.seed = options.optimize.seed;
-        FormResult r{form, {}, {}, 0.0};
-        r.search =
-            searchOver(views, frameScheduler, space, searchOptions, [](const TuneView& v) { return !v.heldOut; });
-        r.coefficients = space.coefficientsAt(r.search.best);
-        r.heldOutMean = meanFraction(views, true, frameScheduler, r.coefficients);
-        if (crossValidate)
-            r.crossValidated = crossValidatedFraction(views, frameScheduler, space, searchOptions, folds);
-        results.push_back(r);
-    }
-    const double defaultTuning = meanFraction(views, false, frameScheduler, defaults);
-    const double defaultHeldOut = meanFraction(views, true, frameScheduler, defaults);
-    // What is written. With cross-validation: the defaults unless a tuned form scores better out
-    // of fold (nothing is fitted for the defaults, so their out-of-fold score is their tuning
-    // score). Without: the form with the better tuning score. Ties keep the simpler set; the
-    // held-out views play no part in the choice.
-    std::vector<double> scores;
-    for (const FormResult& r : results) scores.push_back(crossValidate ? r.crossValidated : r.search.bestValue);
-    // Index into results, -1 for the defaults (only cross-validation compares with them).
-    const int chosen = scheduler::firstBestAbove(crossValidate ? defaultTuning : -INFINITY, scores);
-    const bool keptDefaults = chosen < 0;
-    const scheduler::SchedulerCoefficients written =
-        keptDefaults ? defaults : results[std::size_t(chosen)].coefficients;
-    const double writtenTuning = keptDefaults ? defaultTuning : results[std::size_t(chosen)].search.bestValue;
-    const double writtenHeldOut = keptDefaults ? defaultHeldOut : results[std::size_t(chosen)].heldOutMean;
-    const std::string writtenName =
-        keptDefaults ? std::string("defaults") : scheduler::toString(results[std::size_t(chosen)].form);
-
     nlohmann::json perView = nlohmann::json::array();
-    for (TuneView& view : views) {
-        double defaultFitness = 0.0, tunedFitness = 0.0, defaultMs = 0.0, tunedMs = 0.0;
-        const double defaultFraction = schedulerFraction(view, frameScheduler, defaults, &defaultFitness, &defaultMs);
-        const double tunedFraction = schedulerFraction(view, frameScheduler, written, &tunedFitness, &tunedMs);
+    for (std::size_t k = 0; k < views.size(); ++k) {
+        evaluation::TuningView& view = views[k];
+        const evaluation::SchedulerScore byDefaults = evaluation::scoreScheduler(view, frameScheduler, defaults);
+        const evaluation::SchedulerScore tuned = evaluation::scoreScheduler(view, frameScheduler, written);
         perView.push_back({{"view", view.camera.name},
                            {"held_out", view.heldOut},
-                           {"resumed", view.resumed},
+                           {"resumed", bool(resumed[k])},
                            {"optimizer_fitness", view.optimizerFitness},
                            {"optimizer_predicted_ms", view.cost->predictSceneMs(view.optimizerLevels)},
                            {"optimizer_seconds", view.optimizerSeconds},
-                           {"default_fitness", defaultFitness},
-                           {"default_fraction", defaultFraction},
-                           {"default_predicted_ms", defaultMs},
-                           {"tuned_fitness", tunedFitness},
-                           {"tuned_fraction", tunedFraction},
-                           {"tuned_predicted_ms", tunedMs}});
+                           {"default_fitness", byDefaults.fitness},
+                           {"default_fraction", byDefaults.fraction},
+                           {"default_predicted_ms", byDefaults.predictedMs},
+                           {"tuned_fitness", tuned.fitness},
+                           {"tuned_fraction", tuned.fraction},
+                           {"tuned_predicted_ms", tuned.predictedMs}});
     }
+    return perView;
+}
+
+nlohmann::json tuneReport(const TuneRun& run, nlohmann::json perView) {
+    const TuneOptions& options = run.options;
+    const evaluation::TuningOutcome& outcome = run.outcome;
     nlohmann::json formsJson = nlohmann::json::object();
-    for (const FormResult& r : results) {
-        formsJson[scheduler::toString(r.form)] = {{"tuning_fraction", r.search.bestValue},
-                                                  {"held_out_fraction", r.heldOutMean},
-                                                  {"search_evaluations", r.search.evaluations},
-                                                  {"coefficients", coefficientsJson(r.coefficients)}};
-        if (crossValidate) formsJson[scheduler::toString(r.form)]["cross_validated_fraction"] = r.crossValidated;
+    for (const evaluation::FormTuning& r : outcome.forms) {
+        nlohmann::json& form = formsJson[scheduler::toString(r.form)];
+        form = {{"tuning_fraction", r.search.bestValue},
+                {"held_out_fraction", r.heldOutFraction},
+                {"search_evaluations", r.search.evaluations},
+                {"coefficients", coefficientsJson(r.coefficients)}};
+        if (run.crossValidated()) form["cross_validated_fraction"] = r.crossValidatedFraction;
     }
-    nlohmann::json selection = {{"rule", crossValidate ? "cv" : "tuning"}, {"written", writtenName}};
-    if (crossValidate) {
-        selection["folds"] = folds;
-        selection["defaults_cross_validated_fraction"] = defaultTuning;
+    nlohmann::json selection = {{"rule", run.crossValidated() ? "cv" : "tuning"}, {"written", run.writtenName()}};
+    if (run.crossValidated()) {
+        selection["folds"] = run.folds;
+        selection["defaults_cross_validated_fraction"] = outcome.defaultTuningFraction;
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    nlohmann::json report = {
-        {"scene", prepared.scene.name},
+    const scheduler::TermScales& scales = run.settings.scales;
+    return {
+        {"scene", run.sceneName},
         {"scene_seed", options.optimize.sceneSeed},
         {"budget_ms", options.optimize.budgetMs},
         {"size", options.optimize.size},
         {"shading", options.optimize.shading},
         {"views", options.views},
-        {"held_out_views", holdout},
+        {"held_out_views", run.holdout},
         {"path", options.path},
         {"algorithm", options.optimize.algorithm},
         {"optimizer_evals", options.optimize.maxEvaluations},
-        {"time_model", prepared.timeModelName},
-        {"features", scheduler::toString(mode)},
-        {"organisation", scheduler::toString(parameters.organisation)},
-        {"form", keptDefaults ? std::string("published") : writtenName},
+        {"time_model", run.timeModel},
+        {"features", scheduler::toString(run.mode)},
+        {"organisation", scheduler::toString(run.organisation)},
+        {"form", run.keptDefaults() ? std::string("published") : run.writtenName()},
         {"selection", selection},
         {"term_scales",
          {{"distance", scales.distance}, {"area", scales.area}, {"pixels", scales.pixels}, {"center", scales.center}}},
-        {"defaults", {{"tuning_fraction", defaultTuning}, {"held_out_fraction", defaultHeldOut}}},
-        {"tuned", {{"tuning_fraction", writtenTuning}, {"held_out_fraction", writtenHeldOut}}},
+        {"defaults",
+         {{"tuning_fraction", outcome.defaultTuningFraction}, {"held_out_fraction", outcome.defaultHeldOutFraction}}},
+        {"tuned",
+         {{"tuning_fraction", outcome.writtenTuningFraction}, {"held_out_fraction", outcome.writtenHeldOutFraction}}},
         {"forms", formsJson},
-        {"per_view", perView},
+        {"per_view", std::move(perView)},
         {"checkpoints", checkpointDir(options.out).string()},
-        {"seconds", seconds},
+        {"seconds", run.seconds},
     };
-    nlohmann::json document = coefficientsJson(written);
-    document["tuning"] = report;
-    writeJsonFile(options.out, document);
+}
 
-    if (output.json) {
-        report["out"] = options.out;
-        report["coefficients"] = coefficientsJson(written);
-        printJson(report);
-        return;
-    }
+void printTune(const TuneRun& run) {
+    const TuneOptions& options = run.options;
+    const evaluation::TuningOutcome& outcome = run.outcome;
+    const bool crossValidate = run.crossValidated();
     std::cout << std::fixed << std::setprecision(4);
-    std::cout << prepared.scene.name << ": " << options.views << " views (" << holdout << " held out), budget "
+    std::cout << run.sceneName << ": " << options.views << " views (" << run.holdout << " held out), budget "
               << options.optimize.budgetMs << " ms, optimizer " << options.optimize.algorithm << "\n";
     // Cross-validated: the mean out-of-fold fraction over the tuning views (the choice's score).
     auto crossValidatedText = [&](double value) {
@@ -468,26 +348,89 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     };
     std::cout << "scheduler fitness / optimizer fitness      tuning   " << (crossValidate ? "cross-val" : "         ")
               << "   held-out\n";
-    std::cout << "  published defaults (a1 0.6, a2 0.4)      " << defaultTuning << "   "
-              << crossValidatedText(defaultTuning) << "      " << defaultHeldOut << (keptDefaults ? "  <- written" : "")
-              << "\n";
-    for (std::size_t i = 0; i < results.size(); ++i) {
-        const FormResult& r = results[i];
+    std::cout << "  published defaults (a1 0.6, a2 0.4)      " << outcome.defaultTuningFraction << "   "
+              << crossValidatedText(outcome.defaultTuningFraction) << "      " << outcome.defaultHeldOutFraction
+              << (run.keptDefaults() ? "  <- written" : "") << "\n";
+    for (std::size_t i = 0; i < outcome.forms.size(); ++i) {
+        const evaluation::FormTuning& r = outcome.forms[i];
         std::cout << "  tuned, " << std::left << std::setw(34) << scheduler::toString(r.form) << std::right
-                  << r.search.bestValue << "   " << crossValidatedText(r.crossValidated) << "      " << r.heldOutMean
-                  << (int(i) == chosen ? "  <- written" : "") << "\n";
+                  << r.search.bestValue << "   " << crossValidatedText(r.crossValidatedFraction) << "      "
+                  << r.heldOutFraction << (int(i) == outcome.chosen ? "  <- written" : "") << "\n";
     }
     if (crossValidate) {
-        std::cout << "  (written: the best " << folds << "-fold cross-validated fraction over the tuning views)\n";
+        std::cout << "  (written: the best " << run.folds << "-fold cross-validated fraction over the tuning views)\n";
     }
+    const scheduler::SchedulerCoefficients& written = outcome.written;
     const scheduler::ImportanceCoefficients& a = written.importance;
     std::cout << "  alpha " << a.alpha1 << ", " << a.alpha2 << ", " << a.alpha3 << ", " << a.alpha4
               << "; thresholds (radii)";
     std::cout << std::setprecision(2);
     for (double t : written.thresholds.values) std::cout << " " << t;
     std::cout << "; benchmark scale " << written.benchmark.scale << "\n";
-    std::cout << "wrote " << options.out << " (" << std::setprecision(1) << seconds << " s)\n";
+    std::cout << "wrote " << options.out << " (" << std::setprecision(1) << run.seconds << " s)\n";
     std::cout.unsetf(std::ios::floatfield);
+}
+
+void runTune(TuneOptions options, const OutputOptions& output) {
+    checkAlgorithmName(options.optimize.algorithm);
+    if (options.views < 2) throw UsageError("--views: at least 2 (tuning and held-out views)");
+    TuneRun run(options);
+    run.holdout = options.holdout > 0 ? options.holdout : std::max(1, options.views / 4);
+    if (run.holdout >= options.views) {
+        throw UsageError("--holdout " + std::to_string(run.holdout) + ": must leave at least one of the " +
+                         std::to_string(options.views) + " views for tuning");
+    }
+    // Cross-validation needs two folds of at least one tuning view each.
+    const int folds = std::min(options.folds, options.views - run.holdout);
+    run.folds = options.select == "cv" && folds >= 2 ? folds : 0;
+    if (options.select == "cv" && run.folds == 0) {
+        std::cerr << "lodopt: warning: --select cv needs at least 2 tuning views (this run has "
+                  << options.views - run.holdout << "); choosing by the tuning score\n";
+    }
+    refuseExistingCheckpoints(options);
+    const auto start = std::chrono::steady_clock::now();
+    options.optimize.view = "0";
+    // One evaluator per view stays alive for the whole run: one state per thread, not the
+    // optimizer's default four (memory grows with the view count).
+    options.optimize.evalStates = 1;
+    PreparedScene prepared = prepareScene(options.optimize);
+    run.sceneName = prepared.scene.name;
+    run.timeModel = prepared.timeModelName;
+    std::vector<evaluation::TuningView> views = assignViews(sampleCameras(prepared.scene, options), run);
+    std::vector<bool> resumed(views.size(), false);
+    prepareViews(options, prepared, views, resumed, output);
+
+    run.mode = parseFeatureMode(options.features);
+    run.organisation = parseOrganisation(options.organisation);
+    const scheduler::SceneIndex index(prepared.scene, prepared.settings.width, prepared.settings.height, run.mode, 0,
+                                      prepared.readFeatures);
+    scheduler::SchedulerParameters parameters;
+    parameters.budgetMs = options.optimize.budgetMs;
+    parameters.switchControl.enabled = false;  // single views: nothing to hold
+    parameters.organisation = run.organisation;
+    // The model the optimizer's cost used, without feedback (its warnings were printed once
+    // already by prepareScene).
+    std::ostringstream repeatedWarnings;
+    const TimeEstimator estimator =
+        loadTimeEstimator(options.optimize.profile, options.optimize.model, prepared.scene.name, prepared.settings,
+                          prepared.renderer->glRendererString(), repeatedWarnings);
+    scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
+
+    run.settings = tuningSettings(run, index, views);
+    run.outcome = evaluation::tuneSchedulerCoefficients(views, frameScheduler, run.settings);
+    nlohmann::json perView = perViewJson(views, resumed, frameScheduler, run.outcome.written);
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    nlohmann::json report = tuneReport(run, std::move(perView));
+    nlohmann::json document = coefficientsJson(run.outcome.written);
+    document["tuning"] = report;
+    writeJsonFile(options.out, document);
+    if (output.json) {
+        report["out"] = options.out;
+        report["coefficients"] = coefficientsJson(run.outcome.written);
+        printJson(report);
+        return;
+    }
+    printTune(run);
 }
 
 }  // namespace
