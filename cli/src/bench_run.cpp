@@ -7,6 +7,7 @@
 #include <random>
 
 #include "cli_common.hpp"
+#include "evaluation/device_timing.hpp"
 #include "metrics/incremental_evaluator.hpp"
 #include "metrics/metrics.hpp"
 #include "metrics/reference.hpp"
@@ -327,7 +328,8 @@ std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewC
         }
         // One batch as the profile's clock takes it (one untimed draw first).
         measured.push_back(
-            batchTime(timeDraws(*prepared.renderer, combination, camera, repeats, 1), profile.timing.clock));
+            evaluation::batchTime(evaluation::timeDraws(*prepared.renderer, combination, camera, repeats, 1),
+                                  profile.timing.clock));
         combinations.push_back(std::move(combination));
     }
     // Every feature: the cost's table holds only what the chosen model reads.

@@ -1,48 +1,9 @@
 #include "time_profile.hpp"
 
-#include <time.h>
-
-#include <algorithm>
-#include <cassert>
-#include <chrono>
-#include <vector>
-
 #include "cli_common.hpp"
-#include "statistics.hpp"
 #include "timemodel/profile.hpp"
 
 namespace lodopt::cli {
-namespace {
-
-double processCpuMs() {
-    timespec now{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-    return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
-}
-
-}  // namespace
-
-DrawTimes timeDraws(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
-                    int repeats, int warmup) {
-    assert(repeats >= 1);
-    for (int i = 0; i < warmup; ++i) renderer.drawAndFinish(combination, camera);
-    std::vector<double> wall, cpu;
-    for (int i = 0; i < repeats; ++i) {
-        const double cpuStart = processCpuMs();
-        const auto wallStart = std::chrono::steady_clock::now();
-        renderer.drawAndFinish(combination, camera);
-        const auto wallStop = std::chrono::steady_clock::now();
-        cpu.push_back(processCpuMs() - cpuStart);
-        wall.push_back(std::chrono::duration<double, std::milli>(wallStop - wallStart).count());
-    }
-    return {*std::min_element(wall.begin(), wall.end()), median(wall), median(cpu)};
-}
-
-double batchTime(const DrawTimes& times, const std::string& clock) {
-    if (clock == "cpu") return times.cpuMedian;
-    if (clock == "wall-median") return times.wallMedian;
-    return times.wallMin;
-}
 
 TimeEstimator loadTimeEstimator(const std::string& profilePath, const std::string& modelName,
                                 const std::string& sceneName, const renderer::RenderSettings& settings,

@@ -26,17 +26,5 @@ TimeEstimator loadTimeEstimator(const std::string& profilePath, const std::strin
                                 const std::string& sceneName, const renderer::RenderSettings& settings,
                                 const std::string& glRenderer, std::ostream& warnings);
 
-// One batch of timed draws of a frame, as calibrate times each sample per pass and bench times
-// a frame: `warmup` untimed draws, then `repeats` >= 1 timed draw + glFinish, each on the steady
-// clock and on the process CPU clock (all of llvmpipe's threads). Milliseconds.
-struct DrawTimes {
-    double wallMin = 0.0, wallMedian = 0.0, cpuMedian = 0.0;
-};
-DrawTimes timeDraws(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
-                    int repeats, int warmup);
-// What `clock` (timemodel::timingClockNames) takes from one batch: the least wall time for
-// wall-min and wall-min-median (which then take the least, or the median, over the passes),
-// the median wall time for wall-median, the median CPU time for cpu.
-double batchTime(const DrawTimes& times, const std::string& clock);
 
 }  // namespace lodopt::cli
