@@ -56,7 +56,7 @@ bool isStochastic(const std::string& algorithm) {
     return algorithm == "gapso" || algorithm == "pso" || algorithm == "ga" || algorithm == "random";
 }
 
-std::vector<AlgorithmRun> runAlgorithmGrid(const ViewContext& context, const OptimizeOptions& options,
+std::vector<AlgorithmRun> runAlgorithmGrid(const evaluation::SearchView& context, const OptimizeOptions& options,
                                            const std::vector<std::string>& algorithms,
                                            const std::vector<std::int64_t>& budgets, int seeds,
                                            const std::vector<AlgorithmRun>& finished,
@@ -104,7 +104,7 @@ const AlgorithmRun* findRun(const std::vector<AlgorithmRun>& runs, const std::st
     return nullptr;
 }
 
-BestKnown searchBestKnown(const ViewContext& context, const OptimizeOptions& options, double exhaustiveLimit) {
+BestKnown searchBestKnown(const evaluation::SearchView& context, const OptimizeOptions& options, double exhaustiveLimit) {
     BestKnown best;
     best.combinations = optimizer::combinationCount(context.problem.levelCounts);
     if (best.combinations <= exhaustiveLimit) {
@@ -129,7 +129,7 @@ void applyBestKnown(BestKnown& best, std::vector<AlgorithmRun>& runs) {
     for (AlgorithmRun& run : runs) run.gap = std::max(0.0, best.fitness - run.fitness);
 }
 
-std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewContext& context,
+std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const evaluation::SearchView& context,
                                           const OptimizeOptions& options, int candidates, std::uint64_t seed) {
     const std::vector<int>& levelCounts = context.problem.levelCounts;
     std::mt19937_64 rng(seed);
@@ -198,7 +198,7 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewCon
     return rows;
 }
 
-std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContext& context, double minSeconds) {
+std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const evaluation::SearchView& context, double minSeconds) {
     const evaluation::ViewSetup& setup = *context.setup;
     const renderer::Frame& reference = setup.reference();
     // The candidate: every searched object at its coarsest option, a realistic worst case.
@@ -291,7 +291,7 @@ std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContex
     return rows;
 }
 
-std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewContext& context,
+std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const evaluation::SearchView& context,
                                             const OptimizeOptions& options, int frames, int repeats, std::uint64_t seed,
                                             std::vector<std::string>& warnings) {
     timemodel::DeviceProfile profile;

@@ -50,7 +50,7 @@ bool isStochastic(const std::string& algorithm);
 // Runs every (algorithm, budget, seed) of the grid, in that order. A run found in `finished`
 // (same algorithm, budget and seed: restored from a checkpoint) is taken from there, not run
 // again; `onNewRun` is called after each run made here.
-std::vector<AlgorithmRun> runAlgorithmGrid(const ViewContext& context, const OptimizeOptions& options,
+std::vector<AlgorithmRun> runAlgorithmGrid(const evaluation::SearchView& context, const OptimizeOptions& options,
                                            const std::vector<std::string>& algorithms,
                                            const std::vector<std::int64_t>& budgets, int seeds,
                                            const std::vector<AlgorithmRun>& finished,
@@ -63,7 +63,7 @@ const AlgorithmRun* findRun(const std::vector<AlgorithmRun>& runs, const std::st
 // The exhaustive optimum when the space has at most `exhaustiveLimit` combinations (>= 1);
 // otherwise source "best found" and fitness 0, for applyBestKnown to fill. Independent of the
 // runs, so a checkpoint can keep it while the set of runs changes.
-BestKnown searchBestKnown(const ViewContext& context, const OptimizeOptions& options, double exhaustiveLimit);
+BestKnown searchBestKnown(const evaluation::SearchView& context, const OptimizeOptions& options, double exhaustiveLimit);
 
 // Raises best.fitness to the best of `runs` (a no-op under an exhaustive optimum) and fills
 // every run's gap.
@@ -80,7 +80,7 @@ struct EvalPathRow {
     double meanAbsFitnessDiff = NAN;  // vs the full path on the same candidates (fast rows)
     double maxAbsFitnessDiff = NAN;
 };
-std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const ViewContext& context,
+std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const evaluation::SearchView& context,
                                           const OptimizeOptions& options, int candidates, std::uint64_t seed);
 
 struct MetricsRow {
@@ -93,7 +93,7 @@ struct MetricsRow {
     double absDeviation = NAN;
 };
 // `minSeconds` > 0: time spent per function (split into 5 batches, median taken).
-std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const ViewContext& context, double minSeconds);
+std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const evaluation::SearchView& context, double minSeconds);
 
 struct TimeModelRow {
     std::string model;
@@ -104,7 +104,7 @@ struct TimeModelRow {
 // `frames` random combinations of the view, each timed with `repeats` draws under the
 // profile's clock (least wall time by default, as `lodopt calibrate` fits it).
 // `warnings` gets the profile's mismatch sentences (render size, renderer, machine).
-std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const ViewContext& context,
+std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const evaluation::SearchView& context,
                                             const OptimizeOptions& options, int frames, int repeats, std::uint64_t seed,
                                             std::vector<std::string>& warnings);
 

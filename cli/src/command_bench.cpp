@@ -72,7 +72,7 @@ nlohmann::json jsonNumberOrNull(double value) {
 
 // The budget between the all-coarsest and the all-finest prediction: the search has room in
 // both directions.
-double defaultBudget(const ViewContext& context) {
+double defaultBudget(const evaluation::SearchView& context) {
     const std::vector<int>& counts = context.problem.levelCounts;
     optimizer::Combination coarsest(counts.size()), finest(counts.size(), 0);
     for (std::size_t i = 0; i < counts.size(); ++i) coarsest[i] = counts[i] - 1;
@@ -150,7 +150,7 @@ void runBench(const BenchOptions& bench) {
     const bool budgetGiven = options.budgetMs > 0.0;
     if (!budgetGiven) options.budgetMs = std::numeric_limits<double>::max();  // set below from the view
     PreparedScene prepared = prepareScene(options);
-    ViewContext context = prepareView(prepared, prepared.views[0], options);
+    evaluation::SearchView context = prepareView(prepared, prepared.views[0], options);
     if (!budgetGiven) {
         options.budgetMs = defaultBudget(context);
         context.problem.budgetMs = options.budgetMs;

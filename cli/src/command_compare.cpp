@@ -215,7 +215,7 @@ void addCompareCommand(CLI::App& app) {
 
         InterruptGuard interruptGuard;
         PreparedScene prepared = prepareScene(runOptions);
-        ViewContext context = prepareView(prepared, prepared.views[0], runOptions);
+        evaluation::SearchView context = prepareView(prepared, prepared.views[0], runOptions);
         if (done < total) pollInterrupt("compare", done, total, "run", checkpoint);
 
         std::vector<RunRecord> runs;

@@ -174,7 +174,7 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
                 evaluation::DirtyRegions::ChangedPixels, options.optimize.evalStates);
         } else {
             const auto start = std::chrono::steady_clock::now();
-            ViewContext context = prepareView(prepared, viewIndex, options.optimize);
+            evaluation::SearchView context = prepareView(prepared, viewIndex, options.optimize);
             const optimizer::Result result =
                 runAlgorithm(context, options.optimize, options.optimize.algorithm, options.optimize.seed);
             view.optimizerSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -8,6 +8,7 @@
 #include "cli_common.hpp"
 #include "optimizer/baselines.hpp"
 #include "optimizer/gapso.hpp"
+#include "optimizer/search.hpp"
 #include "scenes/builtin.hpp"
 #include "time_profile.hpp"
 
@@ -47,57 +48,16 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
     return prepared;
 }
 
-ViewContext prepareView(PreparedScene& prepared, int view, const OptimizeOptions& options) {
-    ViewContext context;
-    const scenes::Camera& camera = prepared.scene.views[view];
-    context.setup = std::make_unique<evaluation::ViewSetup>(prepared.scene, camera, *prepared.renderer);
+evaluation::SearchView prepareView(PreparedScene& prepared, int view, const OptimizeOptions& options) {
+    evaluation::SearchViewSettings settings;
+    settings.path = options.evalPath == "full" ? evaluation::EvaluationPath::Full : evaluation::EvaluationPath::Fast;
+    settings.threads = options.threads;
+    settings.states = options.evalStates;
+    settings.budgetMs = options.budgetMs;
     // The search scores fitness only; the answer's precision/recall come from runOptimizer's
     // full render with prepared.metrics.
-    const metrics::MetricParameters search = evaluation::searchParameters(prepared.metrics);
-    if (options.evalPath == "full") {
-        context.evaluator = std::make_unique<evaluation::FullRenderEvaluator>(*context.setup, *prepared.renderer, search);
-    } else {
-        context.evaluator = std::make_unique<evaluation::LayerEvaluator>(
-            *context.setup, search, options.threads, evaluation::DirtyRegions::ChangedPixels, options.evalStates);
-    }
-    context.cost =
-        std::make_unique<evaluation::TimeModelCost>(*context.setup, prepared.estimator, prepared.readFeatures);
-    context.problem.levelCounts = context.setup->levelCounts();
-    context.problem.evaluator = context.evaluator.get();
-    context.problem.cost = context.cost.get();
-    context.problem.budgetMs = options.budgetMs;
-    if (!context.problem.levelCounts.empty()) {
-        context.problem.hints = evaluation::computeHints(*context.setup);
-        // Measured once per view and shared by every algorithm: the mckp baseline's objective
-        // and the repair rule's "fitness lost per millisecond saved".
-        optimizer::CheckedEvaluator checked(context.problem);
-        context.problem.surrogateLoss = optimizer::measureSurrogateLoss(context.problem, checked);
-    }
-    return context;
-}
-
-namespace {
-
-optimizer::Termination terminationOf(const OptimizeOptions& options) {
-    if (options.paper) return optimizer::Termination::paper();
-    optimizer::Termination termination;
-    termination.maxIterations = options.maxIterations;
-    termination.stableIterations = options.stableIterations;
-    termination.maxEvaluations = options.maxEvaluations;
-    termination.maxSeconds = options.maxSeconds;
-    return termination;
-}
-
-}  // namespace
-
-bool isSwarmAlgorithm(const std::string& algorithm) {
-    return algorithm == "gapso" || algorithm == "pso" || algorithm == "ga";
-}
-
-double effectiveFillProbability(const OptimizeOptions& options) {
-    if (options.fillProbability >= 0.0) return options.fillProbability;
-    return options.paper ? optimizer::GapsoParameters::paper().fillProbability
-                         : optimizer::GapsoParameters{}.fillProbability;
+    return evaluation::prepareSearchView(prepared.scene, prepared.scene.views[std::size_t(view)], *prepared.renderer,
+                                         prepared.metrics, prepared.estimator, prepared.readFeatures, settings);
 }
 
 std::vector<std::string> seedAlgorithms(const std::string& seedFrom) {
@@ -107,7 +67,7 @@ std::vector<std::string> seedAlgorithms(const std::string& seedFrom) {
     while (start <= seedFrom.size()) {
         const std::size_t comma = std::min(seedFrom.find(',', start), seedFrom.size());
         const std::string name = seedFrom.substr(start, comma - start);
-        if (name != "mckp" && name != "greedy" && name != "screensize") {
+        if (!optimizer::isStartAlgorithm(name)) {
             throw UsageError("--seed-from: '" + name + "' is not mckp, greedy or screensize (or none)");
         }
         if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
@@ -116,45 +76,32 @@ std::vector<std::string> seedAlgorithms(const std::string& seedFrom) {
     return names;
 }
 
-optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions& options,
+optimizer::SearchOptions searchOptions(const OptimizeOptions& options, const std::string& algorithm,
+                                       std::uint64_t seed) {
+    optimizer::SearchOptions search;
+    search.algorithm = algorithm;
+    search.seed = seed;
+    search.termination.maxIterations = options.maxIterations;
+    search.termination.stableIterations = options.stableIterations;
+    search.termination.maxEvaluations = options.maxEvaluations;
+    search.termination.maxSeconds = options.maxSeconds;
+    search.paper = options.paper;
+    search.particles = options.particles;
+    search.fillProbability = options.fillProbability;
+    search.startFrom = seedAlgorithms(options.seedFrom);
+    return search;
+}
+
+double effectiveFillProbability(const OptimizeOptions& options) {
+    optimizer::SearchOptions search;
+    search.paper = options.paper;
+    search.fillProbability = options.fillProbability;
+    return optimizer::effectiveFillProbability(search);
+}
+
+optimizer::Result runAlgorithm(const evaluation::SearchView& context, const OptimizeOptions& options,
                                const std::string& algorithm, std::uint64_t seed) {
-    const optimizer::Problem& problem = context.problem;
-    if (problem.levelCounts.empty()) {
-        // Every object was skipped: the only combination is the fixed one.
-        optimizer::Result result;
-        result.algorithm = algorithm;
-        result.predictedMs = problem.cost->predictMs({});
-        if (result.predictedMs > problem.budgetMs) throw optimizer::BudgetError(problem.budgetMs, result.predictedMs);
-        result.bestScore = problem.evaluator->evaluate({});
-        result.evaluations = 1;
-        result.log.push_back({0, result.bestScore.fitness, result.bestScore.fitness, result.predictedMs, 1, 0, 0.0});
-        return result;
-    }
-    const optimizer::Termination termination = terminationOf(options);
-    const bool swarm = isSwarmAlgorithm(algorithm);
-    const std::vector<std::string> seeds = seedAlgorithms(options.seedFrom);
-    if (!swarm || (!options.paper && options.particles == 0 && options.fillProbability < 0.0 && seeds.empty())) {
-        return optimizer::makeAlgorithm(algorithm, seed)->run(problem, termination);
-    }
-    optimizer::GapsoParameters parameters =
-        options.paper ? optimizer::GapsoParameters::paper(seed) : optimizer::GapsoParameters{};
-    parameters.seed = seed;
-    parameters.pso = algorithm != "ga";
-    parameters.ga = algorithm != "pso";
-    if (options.particles > 0) parameters.particles = options.particles;
-    parameters.fillProbability = effectiveFillProbability(options);
-    optimizer::Result result;
-    std::int64_t seedEvaluations = 0;
-    for (const std::string& name : seeds) {
-        optimizer::Result start = optimizer::makeAlgorithm(name, seed)->run(problem, optimizer::Termination{});
-        seedEvaluations += start.evaluations;
-        const auto& starts = parameters.initialCombinations;
-        const bool known = std::find(starts.begin(), starts.end(), start.best) != starts.end();
-        if (!known && int(starts.size()) < parameters.particles) parameters.initialCombinations.push_back(start.best);
-    }
-    result = optimizer::Gapso(parameters).run(problem, termination);
-    result.evaluations += seedEvaluations;
-    return result;
+    return optimizer::runSearch(context.problem, searchOptions(options, algorithm, seed));
 }
 
 namespace {
@@ -198,7 +145,7 @@ nlohmann::json windowGroupsJson(const optimizer::Evaluator* evaluator) {
 ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& options,
                      const std::string& algorithm, std::uint64_t seed) {
     const auto start = std::chrono::steady_clock::now();
-    ViewContext context = prepareView(prepared, view, options);
+    evaluation::SearchView context = prepareView(prepared, view, options);
     const double setupSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const auto searchStart = std::chrono::steady_clock::now();
@@ -241,11 +188,11 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
         {"view", setup.camera().name},
         {"algorithm", algorithm},
         {"seeded_from",
-         isSwarmAlgorithm(algorithm) ? nlohmann::json(seedAlgorithms(options.seedFrom)) : nlohmann::json::array()},
+         optimizer::isSwarmAlgorithm(algorithm) ? nlohmann::json(seedAlgorithms(options.seedFrom)) : nlohmann::json::array()},
         {"seed", seed},
         {"scene_seed", options.sceneSeed},
         {"fill_probability",
-         isSwarmAlgorithm(algorithm) ? nlohmann::json(effectiveFillProbability(options)) : nlohmann::json(nullptr)},
+         optimizer::isSwarmAlgorithm(algorithm) ? nlohmann::json(effectiveFillProbability(options)) : nlohmann::json(nullptr)},
         {"eval_path", options.evalPath},
         {"levels", levelMap},
         {"combination", levels},

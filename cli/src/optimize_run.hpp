@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "evaluation/evaluation.hpp"
+#include "evaluation/search_view.hpp"
 #include "evaluation/time_cost.hpp"
 #include "optimizer/optimizer.hpp"
 #include "renderer/renderer.hpp"
@@ -53,10 +54,8 @@ struct OptimizeOptions {
     // GA-PSO's fill probability (GapsoParameters::fillProbability); < 0 = the default (0 with --paper).
     double fillProbability = -1.0;
 };
-// The fill probability a swarm run with these options uses.
+// The fill probability a swarm run with these options uses (optimizer::effectiveFillProbability).
 double effectiveFillProbability(const OptimizeOptions& options);
-// gapso, pso or ga: the algorithms that --seed-from, --particles and --fill apply to.
-bool isSwarmAlgorithm(const std::string& algorithm);
 void addOptimizeOptions(CLI::App& command, OptimizeOptions& options);
 // --fill alone (tune takes it without the other optimize options); its help names the defaults.
 void addFillOption(CLI::App& command, OptimizeOptions& options);
@@ -81,17 +80,15 @@ struct PreparedScene {
 };
 PreparedScene prepareScene(const OptimizeOptions& options);
 
-// Everything about one view that does not depend on the algorithm: reusable across runs.
-struct ViewContext {
-    std::unique_ptr<evaluation::ViewSetup> setup;
-    std::unique_ptr<optimizer::Evaluator> evaluator;
-    std::unique_ptr<evaluation::TimeModelCost> cost;
-    optimizer::Problem problem;
-};
-ViewContext prepareView(PreparedScene& prepared, int view, const OptimizeOptions& options);
+// Everything about one view that does not depend on the algorithm (evaluation::prepareSearchView
+// with these options): reusable across runs.
+evaluation::SearchView prepareView(PreparedScene& prepared, int view, const OptimizeOptions& options);
 
-// Runs `algorithm` with `seed` on a prepared view.
-optimizer::Result runAlgorithm(const ViewContext& context, const OptimizeOptions& options,
+// optimizer::runSearch's options for `algorithm` and `seed` from the command's options.
+optimizer::SearchOptions searchOptions(const OptimizeOptions& options, const std::string& algorithm,
+                                       std::uint64_t seed);
+// Runs `algorithm` with `seed` on a prepared view (optimizer::runSearch).
+optimizer::Result runAlgorithm(const evaluation::SearchView& context, const OptimizeOptions& options,
                                const std::string& algorithm, std::uint64_t seed);
 
 struct ViewRun {

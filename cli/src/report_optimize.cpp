@@ -95,7 +95,7 @@ Baseline runBaseline(const nlohmann::json& result, const fs::path& folder, const
             facts.names.push_back(object.name);
             facts.levelCounts.push_back(int(object.levels.size()));
         }
-        ViewContext context = prepareView(prepared, prepared.views[0], options);
+        evaluation::SearchView context = prepareView(prepared, prepared.views[0], options);
         const optimizer::Result run = runAlgorithm(context, options, report.baseline, options.seed);
         const scenes::Combination levels = context.setup->toScene(run.best);
         baseline.image = prepared.renderer->render(levels, context.setup->camera());

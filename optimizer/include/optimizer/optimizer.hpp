@@ -11,4 +11,5 @@
 #include "optimizer/problem.hpp"
 #include "optimizer/random.hpp"
 #include "optimizer/repair.hpp"
+#include "optimizer/search.hpp"
 #include "optimizer/synthetic.hpp"

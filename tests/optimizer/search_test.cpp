@@ -1,0 +1,73 @@
+// One search as the tool runs it (optimizer/search.hpp).
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "fixtures.hpp"
+#include "optimizer/search.hpp"
+
+namespace lodopt::optimizer {
+namespace {
+
+using testing::HarborProblem;
+
+TEST(Search, PlainAlgorithmsRunAsMakeAlgorithmRunsThem) {
+    HarborProblem harbor;
+    const Problem problem = harbor.problem(9.0);
+    SearchOptions options;
+    options.algorithm = "gapso";
+    options.seed = 3;
+    const Result direct = makeAlgorithm("gapso", 3)->run(problem, options.termination);
+    const Result searched = runSearch(problem, options);
+    EXPECT_EQ(searched.best, direct.best);
+    EXPECT_EQ(searched.evaluations, direct.evaluations);
+    EXPECT_TRUE(testing::sameLog(searched.log, direct.log));
+}
+
+TEST(Search, SwarmStartsFromOtherAnswersAndCountsTheirEvaluations) {
+    HarborProblem harbor;
+    const Problem problem = harbor.problem(9.0);
+    SearchOptions options;
+    options.algorithm = "gapso";
+    options.startFrom = {"greedy", "mckp"};
+    const Result started = runSearch(problem, options);
+    const Result greedy = makeAlgorithm("greedy", 1)->run(problem, Termination{});
+    // The swarm never ends below an answer it started from.
+    EXPECT_GE(started.bestScore.fitness, greedy.bestScore.fitness);
+    EXPECT_LE(started.predictedMs, 9.0);
+    EXPECT_GT(started.evaluations, greedy.evaluations);  // the starts' evaluations count too
+
+    options.startFrom = {"gapso"};
+    EXPECT_THROW(runSearch(problem, options), std::invalid_argument);
+}
+
+TEST(Search, FillDefaultsFollowThePaperSwitch) {
+    SearchOptions options;
+    EXPECT_EQ(effectiveFillProbability(options), GapsoParameters{}.fillProbability);
+    options.paper = true;
+    EXPECT_EQ(effectiveFillProbability(options), GapsoParameters::paper().fillProbability);
+    options.fillProbability = 0.4;
+    EXPECT_EQ(effectiveFillProbability(options), 0.4);
+    EXPECT_TRUE(isSwarmAlgorithm("pso"));
+    EXPECT_FALSE(isSwarmAlgorithm("mckp"));
+    EXPECT_TRUE(isStartAlgorithm("screensize"));
+}
+
+TEST(Search, AProblemWithoutVariablesEvaluatesItsOneCombination) {
+    testing::TableEvaluator evaluator({});
+    const AdditiveCost cost(2.0, {});
+    Problem problem;
+    problem.evaluator = &evaluator;
+    problem.cost = &cost;
+    problem.budgetMs = 3.0;
+    SearchOptions options;
+    const Result result = runSearch(problem, options);
+    EXPECT_EQ(result.evaluations, 1);
+    EXPECT_EQ(result.predictedMs, 2.0);
+    EXPECT_EQ(result.log.size(), 1u);
+    problem.budgetMs = 1.0;
+    EXPECT_THROW(runSearch(problem, options), BudgetError);
+}
+
+}  // namespace
+}  // namespace lodopt::optimizer
