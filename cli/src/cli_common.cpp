@@ -40,6 +40,33 @@ std::vector<int> parseIntList(const std::string& text, const std::string& what) 
     return values;
 }
 
+CLI::Option* addSceneOption(CLI::App& command, std::string& scene, bool positional) {
+    return command.add_option(positional ? "--scene,scene" : "--scene", scene, "Built-in scene name or glTF/GLB path")
+        ->capture_default_str();
+}
+
+CLI::Option* addViewOption(CLI::App& command, std::string& view, const std::string& help) {
+    return command.add_option("--view", view, help)->capture_default_str();
+}
+
+CLI::Option* addSizeOption(CLI::App& command, std::string& size, const std::string& help) {
+    return command.add_option("--size", size, help)->capture_default_str();
+}
+
+void addProfileOptions(CLI::App& command, std::string& profile, std::string& model) {
+    command.add_option("--profile", profile, "Device profile from 'lodopt calibrate' (default: shipped)");
+    command.add_option("--model", model, "Time model in the profile: linear, dong or wimmer (default: the profile's)");
+}
+
+void addWeightsOption(CLI::App& command, std::string& weights) {
+    command.add_option("--weights", weights, "Fusion weights ssim,boundary,information (each >= 0; 0 skips that metric)")
+        ->capture_default_str();
+}
+
+void addResumeFlag(CLI::App& command, bool& resume, const std::string& what) {
+    command.add_flag("--resume", resume, "Continue from " + what + " saved by an interrupted run");
+}
+
 void addSceneSeedOption(CLI::App& command, std::uint32_t& sceneSeed) {
     command.add_option("--scene-seed", sceneSeed, "Variant of a built-in scene (not the search's seed)")
         ->capture_default_str();

@@ -44,6 +44,20 @@ void checkIdentity(const std::string& path, const nlohmann::json& was, const nlo
 // Parses "0,2,1" into integers; throws UsageError naming `what`.
 std::vector<int> parseIntList(const std::string& text, const std::string& what);
 
+// ---- Option groups: declared once, the same name and meaning on every command ----
+// --scene NAME|FILE (built-in scene or glTF/GLB); `positional` also takes it without the flag.
+CLI::Option* addSceneOption(CLI::App& command, std::string& scene, bool positional = false);
+// --view NAME|INDEX (and 'all' where `help` says so).
+CLI::Option* addViewOption(CLI::App& command, std::string& view, const std::string& help = "View name or index");
+// --size WIDTHxHEIGHT (parseSize).
+CLI::Option* addSizeOption(CLI::App& command, std::string& size, const std::string& help = "Render size WIDTHxHEIGHT");
+// --profile FILE and --model NAME: the device profile (default: shipped) and its time model.
+void addProfileOptions(CLI::App& command, std::string& profile, std::string& model);
+// --weights ssim,boundary,information (parseWeights).
+void addWeightsOption(CLI::App& command, std::string& weights);
+// --resume: continue from what an interrupted run of the command saved (`what`).
+void addResumeFlag(CLI::App& command, bool& resume, const std::string& what);
+
 // --weights "ssim,boundary,information" (docs/metrics.md): three finite numbers >= 0, not all 0,
 // into `parameters`' fusion weights; throws UsageError naming the bad item.
 void parseWeights(const std::string& text, metrics::MetricParameters& parameters);

@@ -390,19 +390,18 @@ void addBenchCommand(CLI::App& app) {
     CLI::App* command =
         app.add_subcommand("bench", "Run time against error: algorithms, evaluation paths, metrics, time models");
     OptimizeOptions& o = bench->optimize;
-    command->add_option("--scene", o.scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
-    command->add_option("--view", o.view, "View name or index")->capture_default_str();
+    addSceneOption(*command, o.scene);
+    addViewOption(*command, o.view, "View name or index");
     command
         ->add_option("--budget-ms", o.budgetMs,
                      "Predicted render-time budget (default: midway between the "
                      "all-coarsest and the all-finest prediction)")
         ->check(CLI::PositiveNumber);
-    command->add_option("--size", o.size, "Render size WIDTHxHEIGHT")->capture_default_str();
+    addSizeOption(*command, o.size, "Render size WIDTHxHEIGHT");
     addShadingOption(*command, o.shading);
     command->add_option("--threads", o.threads, "Evaluation threads (default: all cores)")->check(CLI::Range(1, 256));
-    command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();
-    command->add_option("--profile", o.profile, "Device profile from 'lodopt calibrate' (default: shipped)");
-    command->add_option("--model", o.model, "Time model in the profile (default: the profile's default)");
+    addWeightsOption(*command, o.weights);
+    addProfileOptions(*command, o.profile, o.model);
     command->add_option("--seed", o.seed, "Seed of the sampled candidates and time-model frames")->capture_default_str();
     addSceneSeedOption(*command, o.sceneSeed);
     command->add_option("--algos", bench->algorithms, "Comma-separated algorithms")->capture_default_str();
@@ -428,8 +427,7 @@ void addBenchCommand(CLI::App& app) {
                       "A smoke run: 2 seeds, budgets 30,100, 12 candidates, 8 timed frames, short metric timing "
                       "(explicit options still win)");
     command->add_option("--out", bench->out, "Output folder")->capture_default_str();
-    command->add_flag("--resume", bench->resume,
-                      "Continue from the units saved in OUT/bench.checkpoint.json by an interrupted bench");
+    addResumeFlag(*command, bench->resume, "the units in OUT/bench.checkpoint.json");
     addOutputOptions(*command, bench->output);
     command->callback([bench, command] {
         BenchOptions options = *bench;

@@ -240,7 +240,7 @@ void addCalibrateCommand(CLI::App& app) {
     auto options = std::make_shared<CalibrateOptions>();
     CLI::App* command =
         app.add_subcommand("calibrate", "Time sampled frames, fit every render-time model, write a device profile");
-    command->add_option("--scene", options->scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
+    addSceneOption(*command, options->scene);
     command->add_option("--views", options->views, "Named views to calibrate from, comma-separated (default all)");
     command->add_option("--samples", options->samples, "Frames to time in all (>= 4)")
         ->capture_default_str()
@@ -248,7 +248,7 @@ void addCalibrateCommand(CLI::App& app) {
     command->add_option("--seed", options->seed, "Seed of the sampled combinations and viewpoints")
         ->capture_default_str();
     addSceneSeedOption(*command, options->sceneSeed);
-    command->add_option("--size", options->size, "WIDTHxHEIGHT of the timed frames")->capture_default_str();
+    addSizeOption(*command, options->size, "WIDTHxHEIGHT of the timed frames");
     addShadingOption(*command, options->shading);
     command->add_option("--jitter", options->jitter, "Extra viewpoints around each named view")
         ->capture_default_str()

@@ -179,8 +179,7 @@ void addCompareCommand(CLI::App& app) {
         ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 30))
         ->capture_default_str();
     command->add_option("--out", *outDir, "Output folder")->capture_default_str();
-    command->add_flag("--resume", *resume,
-                      "Continue from the runs saved in OUT/compare.checkpoint.json by an interrupted compare");
+    addResumeFlag(*command, *resume, "the runs in OUT/compare.checkpoint.json");
     addOutputOptions(*command, *output);
     command->callback([=] {
         const std::vector<std::string> names = splitList(*algorithms);

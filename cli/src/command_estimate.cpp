@@ -110,19 +110,17 @@ void runEstimate(const EstimateOptions& options) {
 void addEstimateCommand(CLI::App& app) {
     auto options = std::make_shared<EstimateOptions>();
     CLI::App* command = app.add_subcommand("estimate", "Predict the render time of one LOD combination");
-    command->add_option("--profile", options->profile,
-                        "Device profile from 'lodopt calibrate' (default: the one shipped for the scene)");
-    command->add_option("--scene", options->scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
-    command->add_option("--view", options->view, "View name or index")->capture_default_str();
+    addSceneOption(*command, options->scene);
+    addViewOption(*command, options->view, "View name or index");
     command->add_option("--levels", options->levels,
                         "One level per object, comma-separated (-1 = not drawn); default all 0 (the reference)");
-    command->add_option("--model", options->model, "linear, dong or wimmer (default: the profile's default)");
-    command->add_option("--size", options->size, "WIDTHxHEIGHT (default: the profile's render size)");
+    addProfileOptions(*command, options->profile, options->model);
+    command->add_option("--size", options->size, "Render size WIDTHxHEIGHT (default: the profile's)");
     command
         ->add_option("--shading", options->shading,
                      "lambert or pbr: how the frame is drawn (default: as the profile was measured)")
         ->check(CLI::IsMember({"lambert", "pbr"}));
-    command->add_option("--scene-seed,--seed", options->seed, "Variant of a built-in scene")->capture_default_str();
+    addSceneSeedOption(*command, options->seed);
     command->add_flag("--no-renderer-check", options->noRendererCheck,
                       "Do not open an OpenGL context to compare the renderer with the profile's");
     addOutputOptions(*command, options->output);

@@ -165,9 +165,7 @@ void addMetricsCommand(CLI::App& app) {
     command->add_option("candidate", options->candidate, "Candidate image A (PNG, JPEG or binary PNM)")
         ->required();
     command->add_option("reference", options->reference, "Reference image B")->required();
-    command->add_option("--weights", options->weights,
-                        "Fusion weights of SSIM, boundary entropy, information entropy (0 = not computed)")
-        ->capture_default_str();
+    addWeightsOption(*command, options->weights);
     command->add_option("--gray", options->gray, "Gray weights: paper (0.30/0.59/0.11), bt601 or bt709")
         ->check(CLI::IsMember({"paper", "bt601", "bt709"}))
         ->capture_default_str();

@@ -32,25 +32,23 @@ std::string curveCsv(const optimizer::Result& result) {
 }  // namespace
 
 void addOptimizeOptions(CLI::App& command, OptimizeOptions& options) {
-    command.add_option("--scene", options.scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
-    command.add_option("--view", options.view, "View name, index, or 'all'")->capture_default_str();
+    addSceneOption(command, options.scene);
+    addViewOption(command, options.view, "View name, index, or 'all'");
     command.add_option("--budget-ms", options.budgetMs, "Predicted render-time budget in milliseconds")
         ->required()
         ->check(CLI::PositiveNumber);
     command.add_option("--seed", options.seed, "Seed of the search (results are deterministic for a seed)")
         ->capture_default_str();
     addSceneSeedOption(command, options.sceneSeed);
-    command.add_option("--size", options.size, "Render size WIDTHxHEIGHT")->capture_default_str();
+    addSizeOption(command, options.size, "Render size WIDTHxHEIGHT");
     addShadingOption(command, options.shading);
     command.add_option("--eval", options.evalPath, "Evaluation path: fast (layers) or full (render each)")
         ->check(CLI::IsMember({"fast", "full"}))
         ->capture_default_str();
     command.add_option("--threads", options.threads, "Evaluation threads (default: all cores)")
         ->check(CLI::Range(1, 256));
-    command.add_option("--weights", options.weights, "Fusion weights ssim,boundary,information")
-        ->capture_default_str();
-    command.add_option("--profile", options.profile, "Device profile from 'lodopt calibrate' (default: shipped)");
-    command.add_option("--model", options.model, "Time model in the profile (default: the profile's default)");
+    addWeightsOption(command, options.weights);
+    addProfileOptions(command, options.profile, options.model);
     command.add_option("--max-iterations", options.maxIterations, "Iterations of iterative searches")
         ->check(CLI::Range(0, 1000000))
         ->capture_default_str();

@@ -24,15 +24,15 @@ void addRenderCommand(CLI::App& app) {
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("render", "Render one LOD combination headless (OSMesa)");
-    command->add_option("--scene", options->scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
-    command->add_option("--view", options->view, "View name or index")->capture_default_str();
+    addSceneOption(*command, options->scene);
+    addViewOption(*command, options->view, "View name or index");
     command->add_option("--levels", options->levels,
                         "One level per object, comma-separated (-1 = not drawn); default all 0 (the reference)");
-    command->add_option("--size", options->size, "WIDTHxHEIGHT")->capture_default_str();
+    addSizeOption(*command, options->size, "WIDTHxHEIGHT");
     addShadingOption(*command, options->shading);
     command->add_option("--out", options->out, "Color image: .png, .jpg or .ppm")->capture_default_str();
     command->add_option("--depth-out", options->depthOut, "Also write depth as floats: .exr or .pfm");
-    command->add_option("--scene-seed,--seed", options->seed, "Variant of a built-in scene");
+    addSceneSeedOption(*command, options->seed);
     command->add_flag("--time", options->time, "Also measure the render time (median of --repeats)");
     command->add_option("--repeats", options->repeats, "Timed repeats for --time")->check(CLI::Range(1, 1000));
     addOutputOptions(*command, options->output);

@@ -92,8 +92,8 @@ void addSceneCommand(CLI::App& app) {
     };
     auto info = std::make_shared<InfoOptions>();
     CLI::App* infoCommand = scene->add_subcommand("info", "Objects, levels and per-level statistics");
-    infoCommand->add_option("scene", info->scene, "Built-in scene name or glTF/GLB path")->required();
-    infoCommand->add_option("--scene-seed,--seed", info->seed, "Variant of a built-in scene");
+    addSceneOption(*infoCommand, info->scene, true)->required();
+    addSceneSeedOption(*infoCommand, info->seed);
     addOutputOptions(*infoCommand, info->output);
     infoCommand->callback([info] {
         scenes::Scene loaded = scenes::loadScene(info->scene, info->seed);
@@ -108,9 +108,9 @@ void addSceneCommand(CLI::App& app) {
     };
     auto exportOptions = std::make_shared<ExportOptions>();
     CLI::App* exportCommand = scene->add_subcommand("export", "Write a scene as glTF 2.0 with MSFT_lod");
-    exportCommand->add_option("scene", exportOptions->scene, "Built-in scene name or glTF/GLB path")->required();
-    exportCommand->add_option("out", exportOptions->out, "Output .gltf or .glb")->required();
-    exportCommand->add_option("--scene-seed,--seed", exportOptions->seed, "Variant of a built-in scene");
+    addSceneOption(*exportCommand, exportOptions->scene, true)->required();
+    exportCommand->add_option("--out,out", exportOptions->out, "Output .gltf or .glb")->required();
+    addSceneSeedOption(*exportCommand, exportOptions->seed);
     addOutputOptions(*exportCommand, exportOptions->output);
     exportCommand->callback([exportOptions] {
         const std::string& out = exportOptions->out;

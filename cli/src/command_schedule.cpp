@@ -427,7 +427,7 @@ void addScheduleCommand(CLI::App& app) {
     auto options = std::make_shared<ScheduleOptions>();
     auto output = std::make_shared<OutputOptions>();
     CLI::App* command = app.add_subcommand("schedule", "Real-time LOD scheduling along a camera path");
-    command->add_option("--scene", options->scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
+    addSceneOption(*command, options->scene);
     addSceneSeedOption(*command, options->sceneSeed);
     command->add_option("--path", options->path,
                         "Camera path: a name in the scene or a JSON file (default: the scene's first)");
@@ -440,10 +440,9 @@ void addScheduleCommand(CLI::App& app) {
     command->add_flag("--no-baseline", options->noBaseline, "With --render: skip the unscheduled baseline");
     command->add_flag("--check-features", options->checkFeatures,
                       "Also predict each decision from exact features (exact_predicted_ms; slow)");
-    command->add_option("--size", options->size, "Render size WIDTHxHEIGHT (as calibrated)")->capture_default_str();
+    addSizeOption(*command, options->size, "Render size WIDTHxHEIGHT (as calibrated)");
     addShadingOption(*command, options->shading);
-    command->add_option("--profile", options->profile, "Device profile from 'lodopt calibrate' (default: shipped)");
-    command->add_option("--model", options->model, "Time model in the profile (default: the profile's default)");
+    addProfileOptions(*command, options->profile, options->model);
     command->add_option("--organisation", options->organisation, "flat (DONG15) or tiles (CITY17 quadtree)")
         ->check(CLI::IsMember({"flat", "tiles"}))
         ->capture_default_str();
@@ -494,8 +493,7 @@ void addScheduleCommand(CLI::App& app) {
     command->add_option("--batch", options->batch, "Frames per checkpoint (the unit an interrupt waits for)")
         ->check(CLI::Range(1, 1000000))
         ->capture_default_str();
-    command->add_flag("--resume", options->resume,
-                      "Continue from the frames saved in OUT/schedule.checkpoint.json by an interrupted schedule");
+    addResumeFlag(*command, options->resume, "the frames in OUT/schedule.checkpoint.json");
     command->add_option("--out", options->outDir, "Output folder (frames.csv, summary.json)")->capture_default_str();
     addOutputOptions(*command, *output);
     command->callback([options, output] { runSchedule(*options, *output); });

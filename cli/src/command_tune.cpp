@@ -73,7 +73,7 @@ nlohmann::json settingsSignature(const TuneOptions& o) {
             {"profile", p.profile},
             {"model", p.model},
             {"path", o.path},
-            {"views", o.views},
+            {"view-count", o.views},
             {"fill", effectiveFillProbability(p)}};
 }
 
@@ -230,7 +230,7 @@ struct TuneRun {
     }
 };
 
-// --views views with their held-out flags and cross-validation folds (--holdout, --folds).
+// --view-count views with their held-out flags and cross-validation folds (--holdout, --folds).
 std::vector<evaluation::TuningView> assignViews(const std::vector<scenes::Camera>& cameras, const TuneRun& run) {
     const int count = int(cameras.size());
     const std::vector<bool> heldOut = scheduler::heldOutViews(count, run.holdout);
@@ -373,7 +373,7 @@ void printTune(const TuneRun& run) {
 
 void runTune(TuneOptions options, const OutputOptions& output) {
     checkAlgorithmName(options.optimize.algorithm);
-    if (options.views < 2) throw UsageError("--views: at least 2 (tuning and held-out views)");
+    if (options.views < 2) throw UsageError("--view-count: at least 2 (tuning and held-out views)");
     TuneRun run(options);
     run.holdout = options.holdout > 0 ? options.holdout : std::max(1, options.views / 4);
     if (run.holdout >= options.views) {
@@ -443,8 +443,8 @@ void addTuneCommand(CLI::App& app) {
     CLI::App* command =
         app.add_subcommand("tune", "Fit the scheduler's importance coefficients to the optimizer's answers");
     OptimizeOptions& o = options->optimize;
-    command->add_option("--scene", o.scene, "Built-in scene name or glTF/GLB path")->capture_default_str();
-    command->add_option("--views", options->views, "Viewpoints to sample (or path frames to take)")
+    addSceneOption(*command, o.scene);
+    command->add_option("--view-count", options->views, "Viewpoints to sample (or path frames to take)")
         ->check(CLI::Range(2, 100000))
         ->capture_default_str();
     command->add_option("--path", options->path, "Take the views from a camera path (name or JSON file)");
@@ -477,12 +477,11 @@ void addTuneCommand(CLI::App& app) {
     command->add_option("--seed", o.seed, "Seed of the viewpoints, the optimizer and the search")
         ->capture_default_str();
     addSceneSeedOption(*command, o.sceneSeed);
-    command->add_option("--size", o.size, "Render size WIDTHxHEIGHT")->capture_default_str();
+    addSizeOption(*command, o.size, "Render size WIDTHxHEIGHT");
     addShadingOption(*command, o.shading);
     command->add_option("--threads", o.threads, "Evaluation threads")->check(CLI::Range(1, 256));
-    command->add_option("--weights", o.weights, "Fusion weights ssim,boundary,information")->capture_default_str();
-    command->add_option("--profile", o.profile, "Device profile from 'lodopt calibrate' (default: shipped)");
-    command->add_option("--model", o.model, "Time model in the profile");
+    addWeightsOption(*command, o.weights);
+    addProfileOptions(*command, o.profile, o.model);
     command
         ->add_option("--select", options->select,
                      "Written set: tuning (the form with the best tuning score) or cv (the defaults or a tuned "
@@ -492,8 +491,8 @@ void addTuneCommand(CLI::App& app) {
     command->add_option("--folds", options->folds, "Cross-validation folds (--select cv)")
         ->check(CLI::Range(2, 1000))
         ->capture_default_str();
-    command->add_flag("--resume", options->resume,
-                      "Reuse the views saved in <out stem>_views/ (same settings); without it they are refused");
+    addResumeFlag(*command, options->resume,
+                  "the views in <out stem>_views/ (same settings; without --resume they are refused)");
     addOutputOptions(*command, *output);
     command->callback([options, output] { runTune(*options, *output); });
 }

@@ -67,7 +67,7 @@ protected:
 // ---- tune: one unit per view ---------------------------------------------------------------
 
 const char* kTune =
-    "tune --scene harbor --views 4 --evals 12 --max-iterations 4 --search-evals 10 --size 64x64 --budget-ms 2 "
+    "tune --scene harbor --view-count 4 --evals 12 --max-iterations 4 --search-evals 10 --size 64x64 --budget-ms 2 "
     "--quiet --out ";
 
 std::size_t viewFiles(const fs::path& dir) {

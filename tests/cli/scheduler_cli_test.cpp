@@ -156,7 +156,7 @@ protected:
     static void TearDownTestSuite() { std::filesystem::remove_all(sDir); }
 
     static std::string tuneArguments() {
-        return "tune --scene harbor --views 4 --evals 24 --max-iterations 6 --search-evals 30 --size 128x128 --threads "
+        return "tune --scene harbor --view-count 4 --evals 24 --max-iterations 6 --search-evals 30 --size 128x128 --threads "
                "1 "
                "--profile " +
                sProfile + " --budget-ms " + std::to_string(sBudget) + " --out " + sCoefficients + " --quiet";
@@ -271,7 +271,7 @@ TEST_F(SchedulerCli, SelectCvWithOneTuningViewFallsBackToTheTuningScore) {
     // 2 views, 1 held out: one tuning view cannot be split into folds.
     const std::string out = (sDir / "tune_two" / "coeffs.json").string();
     const CommandResult result =
-        run("tune --scene harbor --views 2 --evals 8 --max-iterations 2 --search-evals 8 --size 96x96 --threads 1 "
+        run("tune --scene harbor --view-count 2 --evals 8 --max-iterations 2 --search-evals 8 --size 96x96 --threads 1 "
             "--profile " + sProfile + " --budget-ms " + std::to_string(sBudget) + " --out " + out +
             " --select cv --quiet --json");
     ASSERT_EQ(result.exitCode, 0) << result.output;
@@ -373,7 +373,7 @@ TEST_F(SchedulerCli, BadInputExitsWithTwo) {
     EXPECT_EQ(
         run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --coeffs " + badCoefficients + common).exitCode,
         2);
-    EXPECT_EQ(run("tune --scene harbor --views 1 --budget-ms 5" + common).exitCode, 2);
+    EXPECT_EQ(run("tune --scene harbor --view-count 1 --budget-ms 5" + common).exitCode, 2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --switch-control 1,2" + common).exitCode,
               2);
     EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 5 --render --frame-time mean" + common)
