@@ -9,7 +9,6 @@
 namespace lodopt::cli {
 namespace {
 
-constexpr const char* kFormat = "lodopt-bench-checkpoint/1";
 
 // JSON writes NaN (and infinities, which no field holds) as null: numberOrNaN reads it back.
 nlohmann::json toJson(const AlgorithmRun& run) {
@@ -136,40 +135,30 @@ auto rowsOf(const nlohmann::json& array, Read read) {
 
 }  // namespace
 
-BenchCheckpoint loadBenchCheckpoint(const std::string& path, const nlohmann::json& identity) {
+BenchCheckpoint benchFromCheckpoint(const nlohmann::json& saved) {
     BenchCheckpoint checkpoint;
-    try {
-        std::ifstream in(path);
-        const nlohmann::json saved = nlohmann::json::parse(in);
-        if (saved.at("format") != kFormat) throw std::invalid_argument("unknown format");
-        checkIdentity(path, saved.at("options"), identity);
-        checkpoint.runs = rowsOf(saved.at("runs"), runFromJson);
-        if (saved.contains("best_known")) checkpoint.bestKnown = bestFromJson(saved["best_known"]);
-        if (saved.contains("eval_paths")) checkpoint.evalPaths = rowsOf(saved["eval_paths"], pathFromJson);
-        if (saved.contains("metrics")) checkpoint.metrics = rowsOf(saved["metrics"], metricsFromJson);
-        if (saved.contains("time_models")) {
-            const nlohmann::json& section = saved["time_models"];
-            checkpoint.timeModels = TimeModelSection{rowsOf(section.at("rows"), timeModelFromJson),
-                                                     section.at("warnings").get<std::vector<std::string>>()};
-        }
-    } catch (const UsageError&) {
-        throw;
-    } catch (const std::exception& error) {
-        throw UsageError(path + ": not a readable bench checkpoint (" + error.what() + "); delete it to start over");
+    checkpoint.runs = rowsOf(saved.at("runs"), runFromJson);
+    if (saved.contains("best_known")) checkpoint.bestKnown = bestFromJson(saved["best_known"]);
+    if (saved.contains("eval_paths")) checkpoint.evalPaths = rowsOf(saved["eval_paths"], pathFromJson);
+    if (saved.contains("metrics")) checkpoint.metrics = rowsOf(saved["metrics"], metricsFromJson);
+    if (saved.contains("time_models")) {
+        const nlohmann::json& section = saved["time_models"];
+        checkpoint.timeModels = TimeModelSection{rowsOf(section.at("rows"), timeModelFromJson),
+                                                 section.at("warnings").get<std::vector<std::string>>()};
     }
     return checkpoint;
 }
 
-void saveBenchCheckpoint(const std::string& path, const nlohmann::json& identity, const BenchCheckpoint& checkpoint) {
-    nlohmann::json saved = {{"format", kFormat}, {"options", identity}, {"runs", arrayOf(checkpoint.runs)}};
-    if (checkpoint.bestKnown) saved["best_known"] = toJson(*checkpoint.bestKnown);
-    if (checkpoint.evalPaths) saved["eval_paths"] = arrayOf(*checkpoint.evalPaths);
-    if (checkpoint.metrics) saved["metrics"] = arrayOf(*checkpoint.metrics);
+nlohmann::json benchToCheckpoint(const BenchCheckpoint& checkpoint) {
+    nlohmann::json units = {{"runs", arrayOf(checkpoint.runs)}};
+    if (checkpoint.bestKnown) units["best_known"] = toJson(*checkpoint.bestKnown);
+    if (checkpoint.evalPaths) units["eval_paths"] = arrayOf(*checkpoint.evalPaths);
+    if (checkpoint.metrics) units["metrics"] = arrayOf(*checkpoint.metrics);
     if (checkpoint.timeModels) {
-        saved["time_models"] = {{"rows", arrayOf(checkpoint.timeModels->rows)},
+        units["time_models"] = {{"rows", arrayOf(checkpoint.timeModels->rows)},
                                 {"warnings", checkpoint.timeModels->warnings}};
     }
-    writeJsonFile(path, saved);
+    return units;
 }
 
 }  // namespace lodopt::cli

@@ -29,12 +29,9 @@ struct BenchCheckpoint {
     std::optional<TimeModelSection> timeModels;
 };
 
-// The checkpoint at `path`, written with the options `identity` (option name without "--" →
-// value). Throws UsageError naming the first option whose value differs, or saying that the
-// file is not a readable bench checkpoint.
-BenchCheckpoint loadBenchCheckpoint(const std::string& path, const nlohmann::json& identity);
-
-// Writes `checkpoint` atomically to `path`.
-void saveBenchCheckpoint(const std::string& path, const nlohmann::json& identity, const BenchCheckpoint& checkpoint);
+// The units of a bench checkpoint (CheckpointFile "bench", units "units").
+BenchCheckpoint benchFromCheckpoint(const nlohmann::json& saved);
+// Its units as the checkpoint's members, for CheckpointFile::save.
+nlohmann::json benchToCheckpoint(const BenchCheckpoint& checkpoint);
 
 }  // namespace lodopt::cli

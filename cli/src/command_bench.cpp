@@ -18,6 +18,7 @@
 
 #include "bench_checkpoint.hpp"
 #include "bench_run.hpp"
+#include "checkpoint.hpp"
 #include "cli_common.hpp"
 #include "interrupt.hpp"
 #include "optimizer/checked_evaluator.hpp"
@@ -120,18 +121,12 @@ void runBench(const BenchOptions& bench) {
     if (options.view == "all") throw UsageError("bench: --view must name one view");
 
     const std::filesystem::path dir(bench.out);
-    const std::string checkpointPath = (dir / kBenchCheckpoint).string();
+    const CheckpointFile checkpointFile((dir / kBenchCheckpoint).string(), "bench", "units");
+    const std::string& checkpointPath = checkpointFile.path();
     const nlohmann::json identity = checkpointIdentity(bench);
     BenchCheckpoint checkpoint;
-    if (std::filesystem::exists(checkpointPath)) {
-        if (!bench.resume) {
-            throw UsageError(checkpointPath + " holds the finished units of an interrupted bench: add --resume to "
-                                              "continue it, or delete the file to start over");
-        }
-        checkpoint = loadBenchCheckpoint(checkpointPath, identity);
-    } else if (bench.resume && !bench.output.quiet && !bench.output.json) {
-        std::cerr << "lodopt: bench: no checkpoint in " << dir.string() << ", starting from the first unit\n";
-    }
+    checkpointFile.restore(bench.resume, bench.output.quiet || bench.output.json, identity,
+                           [&](const nlohmann::json& saved) { checkpoint = benchFromCheckpoint(saved); });
     std::size_t gridRuns = 0, done = 0;
     for (const std::string& name : algorithms) {
         const int runsHere = isStochastic(name) ? bench.seeds : 1;
@@ -172,7 +167,7 @@ void runBench(const BenchOptions& bench) {
     // After each new unit: save every finished one, then stop here if a signal came. After the
     // last unit only the outputs are left: finish them rather than stop.
     auto unitDone = [&](const std::string& label) {
-        saveBenchCheckpoint(checkpointPath, identity, checkpoint);
+        checkpointFile.save(identity, benchToCheckpoint(checkpoint));
         progress.step(label);
         try {
             if (++done < total) pollInterrupt("bench", done, total, "unit", checkpointPath);
@@ -338,7 +333,7 @@ void runBench(const BenchOptions& bench) {
         {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
     };
     writeJsonFile((dir / kBenchJson).string(), document);
-    std::filesystem::remove(checkpointPath);  // every unit is now in the outputs
+    checkpointFile.remove();  // every unit is now in the outputs
     if (bench.output.json) {
         document["out"] = bench.out;
         printJson(document);

@@ -16,6 +16,7 @@
 #include <map>
 #include <sstream>
 
+#include "checkpoint.hpp"
 #include "cli_common.hpp"
 #include "interrupt.hpp"
 #include "optimize_run.hpp"
@@ -120,34 +121,20 @@ nlohmann::json checkpointIdentity(const OptimizeOptions& options, std::int64_t e
             {"fill", effectiveFillProbability(options)}};
 }
 
-constexpr const char* kCheckpointFormat = "lodopt-compare-checkpoint/1";
-
-// The saved runs of an earlier, interrupted compare with the same identity, by runKey.
-std::map<std::string, RunRecord> loadCheckpoint(const std::string& path, const nlohmann::json& identity) {
+// The saved runs of an earlier, interrupted compare, by runKey.
+std::map<std::string, RunRecord> runsFromCheckpoint(const nlohmann::json& saved) {
     std::map<std::string, RunRecord> runs;
-    try {
-        std::ifstream in(path);
-        const nlohmann::json saved = nlohmann::json::parse(in);
-        if (saved.at("format") != kCheckpointFormat) throw std::invalid_argument("unknown format");
-        checkIdentity(path, saved.at("options"), identity);
-        for (const nlohmann::json& item : saved.at("runs")) {
-            RunRecord run = runFromJson(item);
-            runs[runKey(run.algorithm, run.seed)] = std::move(run);
-        }
-    } catch (const UsageError&) {
-        throw;
-    } catch (const std::exception& error) {
-        throw UsageError(path + ": not a readable compare checkpoint (" + error.what() +
-                         "); delete it to start over");
+    for (const nlohmann::json& item : saved.at("runs")) {
+        RunRecord run = runFromJson(item);
+        runs[runKey(run.algorithm, run.seed)] = std::move(run);
     }
     return runs;
 }
 
-void saveCheckpoint(const std::string& path, const nlohmann::json& identity,
-                    const std::map<std::string, RunRecord>& runs) {
-    nlohmann::json saved = {{"format", kCheckpointFormat}, {"options", identity}, {"runs", nlohmann::json::array()}};
-    for (const auto& [key, run] : runs) saved["runs"].push_back(runToJson(run));
-    writeJsonFile(path, saved);
+nlohmann::json runsToCheckpoint(const std::map<std::string, RunRecord>& runs) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& [key, run] : runs) list.push_back(runToJson(run));
+    return {{"runs", list}};
 }
 
 std::vector<std::string> splitList(const std::string& text) {
@@ -194,18 +181,11 @@ void addCompareCommand(CLI::App& app) {
         runOptions.stableIterations = 0;
 
         const std::filesystem::path dir(*outDir);
-        const std::string checkpoint = (dir / "compare.checkpoint.json").string();
+        const CheckpointFile checkpoint((dir / "compare.checkpoint.json").string(), "compare", "runs");
         const nlohmann::json identity = checkpointIdentity(runOptions, *evaluations);
         std::map<std::string, RunRecord> saved;
-        if (std::filesystem::exists(checkpoint)) {
-            if (!*resume) {
-                throw UsageError(checkpoint + " holds the runs of an interrupted compare: add --resume to continue "
-                                              "it, or delete the file to start over");
-            }
-            saved = loadCheckpoint(checkpoint, identity);
-        } else if (*resume && !output->quiet && !output->json) {
-            std::cerr << "lodopt: compare: no checkpoint in " << dir.string() << ", starting from the first run\n";
-        }
+        checkpoint.restore(*resume, output->quiet || output->json, identity,
+                           [&](const nlohmann::json& document) { saved = runsFromCheckpoint(document); });
         const std::size_t total = names.size() * std::size_t(*seeds);
         std::size_t done = 0;
         for (const std::string& name : names) {
@@ -215,7 +195,7 @@ void addCompareCommand(CLI::App& app) {
         InterruptGuard interruptGuard;
         PreparedScene prepared = prepareScene(runOptions);
         evaluation::SearchView context = prepareView(prepared, prepared.views[0], runOptions);
-        if (done < total) pollInterrupt("compare", done, total, "run", checkpoint);
+        if (done < total) pollInterrupt("compare", done, total, "run", checkpoint.path());
 
         std::vector<RunRecord> runs;
         Progress progress("compare", total - done, output->quiet || output->json);
@@ -232,11 +212,11 @@ void addCompareCommand(CLI::App& app) {
                 record.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
                 saved[runKey(name, std::uint64_t(seed))] = record;
                 runs.push_back(std::move(record));
-                saveCheckpoint(checkpoint, identity, saved);
+                checkpoint.save(identity, runsToCheckpoint(saved));
                 progress.step(name + " seed " + std::to_string(seed));
                 // After the last run only the summary is left: finish it rather than stop.
                 try {
-                    if (++done < total) pollInterrupt("compare", done, total, "run", checkpoint);
+                    if (++done < total) pollInterrupt("compare", done, total, "run", checkpoint.path());
                 } catch (const Interrupted&) {
                     progress.finish();  // the message starts on a clean line
                     throw;
@@ -298,7 +278,7 @@ void addCompareCommand(CLI::App& app) {
         writeJsonFile((dir / "compare.json").string(), document);
         scenes::writeTextAtomically((dir / "compare.csv").string(), csv.str());
         scenes::writeTextAtomically((dir / "curves.csv").string(), curves.str());
-        std::filesystem::remove(checkpoint);  // every run is now in the outputs
+        checkpoint.remove();  // every run is now in the outputs
         if (output->json) {
             printJson(document);
             return;

@@ -14,6 +14,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "checkpoint.hpp"
 #include "cli_common.hpp"
 #include "interrupt.hpp"
 #include "evaluation/schedule_walk.hpp"
@@ -155,48 +156,25 @@ std::vector<int> scheduledFrames(const ScheduleOptions& options, const scenes::C
     return frames;
 }
 
-// The frames an interrupted run saved in `checkpoint`, or none; refuses to overwrite them
-// without --resume.
-std::vector<evaluation::RecordedFrame> restoredFrames(const ScheduleOptions& options, const OutputOptions& output,
-                                                      const std::string& checkpoint, const nlohmann::json& identity,
-                                                      std::size_t total) {
-    std::vector<evaluation::RecordedFrame> restored;
-    if (std::filesystem::exists(checkpoint)) {
-        if (!options.resume) {
-            throw UsageError(checkpoint +
-                             " holds the frames of an interrupted schedule: add --resume to continue "
-                             "it, or delete the file to start over");
-        }
-        restored = loadScheduleCheckpoint(checkpoint, identity);
-    } else if (options.resume && !output.quiet && !output.json) {
-        std::cerr << "lodopt: schedule: no checkpoint in " << std::filesystem::path(options.outDir).string()
-                  << ", starting from the first frame\n";
-    }
-    if (restored.size() > total) {
-        throw UsageError(checkpoint + ": holds more frames than this run has; delete it to start over");
-    }
-    return restored;
-}
-
 // Walks `frames`, replaying the restored ones, checkpointing every --batch frames; an interrupt
 // stops after a batch (Interrupted).
 std::vector<evaluation::WalkFrame> walkFrames(evaluation::ScheduleWalk& walk, const ScheduleOptions& options,
                                               const OutputOptions& output, const scenes::CameraPath& path,
-                                              const std::vector<int>& frames, const std::string& checkpoint,
+                                              const std::vector<int>& frames, const CheckpointFile& checkpoint,
                                               const nlohmann::json& identity,
                                               std::vector<evaluation::RecordedFrame> recorded) {
     std::vector<evaluation::WalkFrame> rows;
     rows.reserve(frames.size());
     const std::size_t total = frames.size();
     InterruptGuard interruptGuard;
-    if (recorded.size() < total) pollInterrupt("schedule", recorded.size(), total, "frame", checkpoint);
+    if (recorded.size() < total) pollInterrupt("schedule", recorded.size(), total, "frame", checkpoint.path());
     Progress progress("schedule", total - recorded.size(), output.quiet || output.json);
     for (std::size_t i = 0; i < total; ++i) {
         if (i < recorded.size()) {
             try {
                 rows.push_back(walk.replay(frames[i], recorded[i]));
             } catch (const evaluation::ReplayMismatch& mismatch) {
-                throw UsageError(checkpoint + ": " + mismatch.what() +
+                throw UsageError(checkpoint.path() + ": " + mismatch.what() +
                                  " (scene, path or profile changed?); delete it to start over");
             }
             continue;
@@ -206,10 +184,10 @@ std::vector<evaluation::WalkFrame> walkFrames(evaluation::ScheduleWalk& walk, co
         progress.step(path.frames[std::size_t(frames[i])].name);
         const std::size_t done = i + 1;
         if (done % std::size_t(options.batch) == 0 || done == total) {
-            saveScheduleCheckpoint(checkpoint, identity, recorded);
+            checkpoint.save(identity, framesToCheckpoint(recorded));
             // After the last batch only the outputs are left: finish them rather than stop.
             try {
-                if (done < total) pollInterrupt("schedule", done, total, "frame", checkpoint);
+                if (done < total) pollInterrupt("schedule", done, total, "frame", checkpoint.path());
             } catch (const Interrupted&) {
                 progress.finish();  // the message starts on a clean line
                 throw;
@@ -389,9 +367,14 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     const scheduler::FeatureMode mode = parseFeatureMode(options.features);
 
     const std::filesystem::path dir(options.outDir);
-    const std::string checkpoint = (dir / "schedule.checkpoint.json").string();
+    const CheckpointFile checkpoint((dir / "schedule.checkpoint.json").string(), "schedule", "frames");
     const nlohmann::json identity = checkpointIdentity(options, parameters);
-    std::vector<evaluation::RecordedFrame> restored = restoredFrames(options, output, checkpoint, identity, frames.size());
+    std::vector<evaluation::RecordedFrame> restored;
+    checkpoint.restore(options.resume, output.quiet || output.json, identity,
+                       [&](const nlohmann::json& saved) { restored = framesFromCheckpoint(saved); });
+    if (restored.size() > frames.size()) {
+        throw UsageError(checkpoint.path() + ": holds more frames than this run has; delete it to start over");
+    }
 
     const auto setupStart = std::chrono::steady_clock::now();
     const scheduler::SceneIndex index(scene, settings.width, settings.height, mode, 0, estimator.model->readFeatures());
@@ -412,7 +395,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     nlohmann::json summary = summaryJson(run, totals);
     scenes::writeTextAtomically((dir / "frames.csv").string(), framesCsv(run.rows, index.maxLevelCount()));
     writeJsonFile((dir / "summary.json").string(), summary);
-    std::filesystem::remove(checkpoint);  // every frame is now in the outputs
+    checkpoint.remove();  // every frame is now in the outputs
     summary["out"] = options.outDir;
     if (output.json) {
         printJson(summary);

@@ -16,11 +16,9 @@
 
 namespace lodopt::cli {
 
-// The frames saved by an interrupted schedule whose options equal `identity` (keyed by option
-// name). Throws UsageError naming the option that differs, or saying that the file is unreadable.
-std::vector<evaluation::RecordedFrame> loadScheduleCheckpoint(const std::string& path, const nlohmann::json& identity);
-// Writes `frames` with `identity` atomically.
-void saveScheduleCheckpoint(const std::string& path, const nlohmann::json& identity,
-                            const std::vector<evaluation::RecordedFrame>& frames);
+// The frames of a schedule checkpoint (CheckpointFile "schedule", units "frames").
+std::vector<evaluation::RecordedFrame> framesFromCheckpoint(const nlohmann::json& saved);
+// {"frames": [...]}, for CheckpointFile::save.
+nlohmann::json framesToCheckpoint(const std::vector<evaluation::RecordedFrame>& frames);
 
 }  // namespace lodopt::cli

@@ -23,6 +23,7 @@
 #include <thread>
 
 #include "bench_checkpoint.hpp"
+#include "checkpoint.hpp"
 #include "child_process.hpp"
 #include "cli_common.hpp"
 #include "interrupt.hpp"
@@ -310,8 +311,10 @@ TEST(BenchCheckpoint, DoublesRoundTripExactly) {
     const fs::path file =
         fs::temp_directory_path() / ("lodopt-bench-checkpoint-" + std::to_string(::getpid()) + ".json");
     const nlohmann::json identity = {{"scene", "harbor"}, {"candidates", 4}};
-    saveBenchCheckpoint(file.string(), identity, written);
-    const BenchCheckpoint read = loadBenchCheckpoint(file.string(), identity);
+    const CheckpointFile checkpoint(file.string(), "bench", "units");
+    checkpoint.save(identity, benchToCheckpoint(written));
+    BenchCheckpoint read;
+    checkpoint.restore(true, true, identity, [&](const nlohmann::json& saved) { read = benchFromCheckpoint(saved); });
 
     auto same = [](double a, double b) {
         return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b));
@@ -342,12 +345,21 @@ TEST(BenchCheckpoint, DoublesRoundTripExactly) {
 
     // Written with other options: refused, naming the option.
     try {
-        loadBenchCheckpoint(file.string(), {{"scene", "harbor"}, {"candidates", 5}});
+        checkpoint.restore(true, true, {{"scene", "harbor"}, {"candidates", 5}}, [](const nlohmann::json&) {});
         ADD_FAILURE() << "no UsageError";
     } catch (const UsageError& error) {
         EXPECT_NE(std::string(error.what()).find("--candidates 4, this run has 5"), std::string::npos) << error.what();
     }
-    fs::remove(file);
+    // Without --resume an existing checkpoint is refused rather than overwritten.
+    try {
+        checkpoint.restore(false, true, identity, [](const nlohmann::json&) {});
+        ADD_FAILURE() << "no UsageError";
+    } catch (const UsageError& error) {
+        EXPECT_NE(std::string(error.what()).find("add --resume"), std::string::npos) << error.what();
+    }
+    checkpoint.remove();
+    EXPECT_FALSE(fs::exists(file));
+    EXPECT_TRUE(checkpoint.restore(true, true, identity, [](const nlohmann::json&) {}).is_null());
 }
 
 }  // namespace

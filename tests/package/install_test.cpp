@@ -94,7 +94,9 @@ TEST_F(InstalledPackage, ConsumerBuiltAgainstItSchedulesLikeTheTree) {
     const fs::path coefficientsFile = scratch / "coefficients.json";
     std::ofstream(coefficientsFile) << scheduler::coefficientsToJson(coefficients);
 
-    const std::string arguments = " " + coefficientsFile.string() + " 30 40";
+    std::string arguments = " ";  // appended, not a chain of + (GCC 12's -Wrestrict misfires on it)
+    arguments += coefficientsFile.string();
+    arguments += " 30 40";
     const cli_test::CommandResult installed = runShell(quoted(build / "frame_loop") + arguments);
     const cli_test::CommandResult inTree = runShell(quoted(LODOPT_FRAME_LOOP) + arguments);
     ASSERT_EQ(installed.exitCode, 0) << installed.output;
