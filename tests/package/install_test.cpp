@@ -18,7 +18,13 @@ namespace {
 namespace fs = std::filesystem;
 using cli_test::runShell;
 
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+// Appended rather than `"'" + ...`: GCC 12's -Wrestrict misfires on a literal-first chain.
+std::string quoted(const fs::path& path) {
+    std::string text = "'";
+    text += path.string();
+    text += "'";
+    return text;
+}
 
 std::string readFile(const fs::path& path) {
     std::ifstream in(path);
@@ -94,7 +100,7 @@ TEST_F(InstalledPackage, ConsumerBuiltAgainstItSchedulesLikeTheTree) {
     const fs::path coefficientsFile = scratch / "coefficients.json";
     std::ofstream(coefficientsFile) << scheduler::coefficientsToJson(coefficients);
 
-    std::string arguments = " ";  // appended, not a chain of + (GCC 12's -Wrestrict misfires on it)
+    std::string arguments = " ";
     arguments += coefficientsFile.string();
     arguments += " 30 40";
     const cli_test::CommandResult installed = runShell(quoted(build / "frame_loop") + arguments);
