@@ -104,34 +104,36 @@ nlohmann::json checkpointIdentity(const BenchOptions& bench) {
             {"quick", bench.quick}};  // beyond the options above, it sets the timing repeats
 }
 
-void runBench(const BenchOptions& bench) {
-    const auto start = std::chrono::steady_clock::now();
-    OptimizeOptions options = bench.optimize;
-    const std::vector<std::string> algorithms = splitNames(bench.algorithms);
-    if (algorithms.empty()) throw UsageError("--algos: empty list");
-    for (const std::string& name : algorithms) {
+// The grid of a bench: its algorithms and evaluation budgets, checked.
+struct BenchGrid {
+    std::vector<std::string> algorithms;
+    std::vector<std::int64_t> budgets;
+};
+
+BenchGrid parseGrid(const BenchOptions& bench) {
+    BenchGrid grid;
+    grid.algorithms = splitNames(bench.algorithms);
+    if (grid.algorithms.empty()) throw UsageError("--algos: empty list");
+    for (const std::string& name : grid.algorithms) {
         checkAlgorithmName(name);
         if (name == "exhaustive") throw UsageError("--algos: exhaustive is the ground truth, not a contestant");
     }
-    std::vector<std::int64_t> budgets;
     for (int value : parseIntList(bench.budgets, "--evals")) {
         if (value < 1) throw UsageError("--evals: " + std::to_string(value) + " must be >= 1");
-        budgets.push_back(value);
+        grid.budgets.push_back(value);
     }
-    if (options.view == "all") throw UsageError("bench: --view must name one view");
+    if (bench.optimize.view == "all") throw UsageError("bench: --view must name one view");
+    return grid;
+}
 
-    const std::filesystem::path dir(bench.out);
-    const CheckpointFile checkpointFile((dir / kBenchCheckpoint).string(), "bench", "units");
-    const std::string& checkpointPath = checkpointFile.path();
-    const nlohmann::json identity = checkpointIdentity(bench);
-    BenchCheckpoint checkpoint;
-    checkpointFile.restore(bench.resume, bench.output.quiet || bench.output.json, identity,
-                           [&](const nlohmann::json& saved) { checkpoint = benchFromCheckpoint(saved); });
+// Units in the whole bench, and those `checkpoint` already holds.
+std::pair<std::size_t, std::size_t> unitCounts(const BenchOptions& bench, const BenchGrid& grid,
+                                               const BenchCheckpoint& checkpoint) {
     std::size_t gridRuns = 0, done = 0;
-    for (const std::string& name : algorithms) {
+    for (const std::string& name : grid.algorithms) {
         const int runsHere = isStochastic(name) ? bench.seeds : 1;
-        gridRuns += budgets.size() * std::size_t(runsHere);
-        for (std::int64_t budget : budgets) {
+        gridRuns += grid.budgets.size() * std::size_t(runsHere);
+        for (std::int64_t budget : grid.budgets) {
             for (int seed = 1; seed <= runsHere; ++seed) {
                 done += findRun(checkpoint.runs, name, budget, std::uint64_t(seed)) ? 1 : 0;
             }
@@ -139,30 +141,27 @@ void runBench(const BenchOptions& bench) {
     }
     done += std::size_t(checkpoint.bestKnown.has_value()) + std::size_t(checkpoint.evalPaths.has_value()) +
             std::size_t(checkpoint.metrics.has_value()) + std::size_t(checkpoint.timeModels.has_value());
-    const std::size_t total = gridRuns + 4;  // the runs, best known, evaluation paths, metrics, time models
+    return {gridRuns + 4, done};  // the runs, best known, evaluation paths, metrics, time models
+}
 
-    InterruptGuard interruptGuard;
-    const bool budgetGiven = options.budgetMs > 0.0;
-    if (!budgetGiven) options.budgetMs = std::numeric_limits<double>::max();  // set below from the view
-    PreparedScene prepared = prepareScene(options);
-    evaluation::SearchView context = prepareView(prepared, prepared.views[0], options);
-    if (!budgetGiven) {
-        options.budgetMs = defaultBudget(context);
-        context.problem.budgetMs = options.budgetMs;
-    }
-    // mckp (and the repair rule) use a per-view table measured once in prepareView, outside
-    // every run's wall time: measured again here so the bench can say what it costs.
-    double tableSeconds = 0.0;
-    std::int64_t tableEvaluations = 0;
-    if (!context.problem.levelCounts.empty()) {
-        const auto tableStart = std::chrono::steady_clock::now();
-        optimizer::CheckedEvaluator checked(context.problem);
-        optimizer::measureSurrogateLoss(context.problem, checked);
-        tableSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tableStart).count();
-        tableEvaluations = checked.evaluations();
-    }
-    if (done < total) pollInterrupt("bench", done, total, "unit", checkpointPath);
+// The surrogate table's cost: measured once per view in prepareView, outside every run's wall
+// time, and measured again here so the bench can say what it costs.
+std::pair<std::int64_t, double> measureSurrogateTable(const evaluation::SearchView& context) {
+    if (context.problem.levelCounts.empty()) return {0, 0.0};
+    const auto tableStart = std::chrono::steady_clock::now();
+    optimizer::CheckedEvaluator checked(context.problem);
+    optimizer::measureSurrogateLoss(context.problem, checked);
+    return {checked.evaluations(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - tableStart).count()};
+}
 
+// Every unit not yet in `checkpoint`, each saved when done; an interrupt stops after a unit.
+std::vector<AlgorithmRun> runUnits(const BenchOptions& bench, const BenchGrid& grid, const OptimizeOptions& options,
+                                   PreparedScene& prepared, const evaluation::SearchView& context,
+                                   const CheckpointFile& checkpointFile, const nlohmann::json& identity,
+                                   BenchCheckpoint& checkpoint) {
+    auto [total, done] = unitCounts(bench, grid, checkpoint);
+    if (done < total) pollInterrupt("bench", done, total, "unit", checkpointFile.path());
     Progress progress("bench", total - done, bench.output.quiet);
     // After each new unit: save every finished one, then stop here if a signal came. After the
     // last unit only the outputs are left: finish them rather than stop.
@@ -170,7 +169,7 @@ void runBench(const BenchOptions& bench) {
         checkpointFile.save(identity, benchToCheckpoint(checkpoint));
         progress.step(label);
         try {
-            if (++done < total) pollInterrupt("bench", done, total, "unit", checkpointPath);
+            if (++done < total) pollInterrupt("bench", done, total, "unit", checkpointFile.path());
         } catch (const Interrupted&) {
             progress.finish();  // the message starts on a clean line
             throw;
@@ -182,13 +181,11 @@ void runBench(const BenchOptions& bench) {
                  std::to_string(run.seed));
     };
     std::vector<AlgorithmRun> runs =
-        runAlgorithmGrid(context, options, algorithms, budgets, bench.seeds, checkpoint.runs, onNewRun);
+        runAlgorithmGrid(context, options, grid.algorithms, grid.budgets, bench.seeds, checkpoint.runs, onNewRun);
     if (!checkpoint.bestKnown) {
         checkpoint.bestKnown = searchBestKnown(context, options, bench.exhaustiveLimit);
         unitDone("best known (" + checkpoint.bestKnown->source + ")");
     }
-    BestKnown best = *checkpoint.bestKnown;
-    applyBestKnown(best, runs);
     if (!checkpoint.evalPaths) {
         checkpoint.evalPaths = measureEvalPaths(prepared, context, options, bench.candidates, options.seed);
         unitDone("evaluation paths");
@@ -205,13 +202,18 @@ void runBench(const BenchOptions& bench) {
         unitDone("time models");
     }
     progress.finish();
-    const std::vector<EvalPathRow>& paths = *checkpoint.evalPaths;
-    const std::vector<MetricsRow>& metricRows = *checkpoint.metrics;
-    const std::vector<TimeModelRow>& timeRows = checkpoint.timeModels->rows;
-    const std::vector<std::string>& warnings = checkpoint.timeModels->warnings;
+    return runs;
+}
 
+// bench.json's tables, with the CSV files of the same rows written beside it.
+struct BenchTables {
+    nlohmann::json algorithms, paths, metrics, timeModels;
+};
+
+nlohmann::json algorithmTable(const BenchGrid& grid, const std::vector<AlgorithmRun>& runs,
+                              const std::filesystem::path& dir) {
     // Per (algorithm, budget): medians over seeds.
-    std::ostringstream runsCsv, algorithmsCsv, pathsCsv, metricsCsv, timeCsv;
+    std::ostringstream runsCsv, algorithmsCsv;
     runsCsv << "algorithm,evaluation_budget,seed,wall_seconds,fitness,gap,evaluations,predicted_ms\n";
     for (const AlgorithmRun& run : runs) {
         runsCsv << run.algorithm << ',' << run.evaluationBudget << ',' << run.seed << ',' << number(run.wallSeconds)
@@ -220,9 +222,9 @@ void runBench(const BenchOptions& bench) {
     }
     algorithmsCsv << "algorithm,evaluation_budget,runs,median_wall_seconds,median_gap,min_gap,max_gap,median_fitness,"
                      "median_evaluations\n";
-    nlohmann::json algorithmTable = nlohmann::json::array();
-    for (const std::string& name : algorithms) {
-        for (std::int64_t budget : budgets) {
+    nlohmann::json table = nlohmann::json::array();
+    for (const std::string& name : grid.algorithms) {
+        for (std::int64_t budget : grid.budgets) {
             std::vector<double> wall, gap, fitness, evaluations;
             for (const AlgorithmRun& run : runs) {
                 if (run.algorithm != name || run.evaluationBudget != budget) continue;
@@ -236,69 +238,151 @@ void runBench(const BenchOptions& bench) {
             algorithmsCsv << name << ',' << budget << ',' << wall.size() << ',' << number(median(wall)) << ','
                           << number(median(gap)) << ',' << number(minGap) << ',' << number(maxGap) << ','
                           << number(median(fitness)) << ',' << number(median(evaluations)) << '\n';
-            algorithmTable.push_back({{"algorithm", name},
-                                      {"evaluation_budget", budget},
-                                      {"runs", wall.size()},
-                                      {"median_wall_seconds", median(wall)},
-                                      {"median_gap", median(gap)},
-                                      {"min_gap", minGap},
-                                      {"max_gap", maxGap},
-                                      {"median_fitness", median(fitness)},
-                                      {"median_evaluations", median(evaluations)}});
+            table.push_back({{"algorithm", name},
+                             {"evaluation_budget", budget},
+                             {"runs", wall.size()},
+                             {"median_wall_seconds", median(wall)},
+                             {"median_gap", median(gap)},
+                             {"min_gap", minGap},
+                             {"max_gap", maxGap},
+                             {"median_fitness", median(fitness)},
+                             {"median_evaluations", median(evaluations)}});
         }
     }
+    scenes::writeTextAtomically((dir / kBenchRunsCsv).string(), runsCsv.str());
+    scenes::writeTextAtomically((dir / kBenchAlgorithmsCsv).string(), algorithmsCsv.str());
+    return table;
+}
+
+BenchTables writeTables(const BenchGrid& grid, const std::vector<AlgorithmRun>& runs,
+                        const BenchCheckpoint& checkpoint, const std::filesystem::path& dir) {
+    BenchTables tables;
+    tables.algorithms = algorithmTable(grid, runs, dir);
+    std::ostringstream pathsCsv, metricsCsv, timeCsv;
     pathsCsv << "path,workload,mode,threads,candidates,seconds,evals_per_second,mean_abs_fitness_diff,"
                 "max_abs_fitness_diff\n";
-    nlohmann::json pathTable = nlohmann::json::array();
-    for (const EvalPathRow& row : paths) {
+    tables.paths = nlohmann::json::array();
+    for (const EvalPathRow& row : *checkpoint.evalPaths) {
         pathsCsv << row.path << ',' << row.workload << ',' << row.mode << ',' << row.threads << ',' << row.candidates
                  << ',' << number(row.seconds) << ',' << number(row.evaluationsPerSecond) << ','
                  << number(row.meanAbsFitnessDiff) << ',' << number(row.maxAbsFitnessDiff) << '\n';
-        pathTable.push_back({{"path", row.path},
-                             {"workload", row.workload},
-                             {"mode", row.mode},
-                             {"threads", row.threads},
-                             {"candidates", row.candidates},
-                             {"evals_per_second", row.evaluationsPerSecond},
-                             {"mean_abs_fitness_diff", jsonNumberOrNull(row.meanAbsFitnessDiff)},
-                             {"max_abs_fitness_diff", jsonNumberOrNull(row.maxAbsFitnessDiff)}});
+        tables.paths.push_back({{"path", row.path},
+                                {"workload", row.workload},
+                                {"mode", row.mode},
+                                {"threads", row.threads},
+                                {"candidates", row.candidates},
+                                {"evals_per_second", row.evaluationsPerSecond},
+                                {"mean_abs_fitness_diff", jsonNumberOrNull(row.meanAbsFitnessDiff)},
+                                {"max_abs_fitness_diff", jsonNumberOrNull(row.maxAbsFitnessDiff)}});
     }
     metricsCsv << "function,width,height,calls,microseconds_per_call,reference,reference_microseconds_per_call,"
                   "abs_deviation\n";
-    nlohmann::json metricTable = nlohmann::json::array();
-    for (const MetricsRow& row : metricRows) {
+    tables.metrics = nlohmann::json::array();
+    for (const MetricsRow& row : *checkpoint.metrics) {
         metricsCsv << '"' << row.function << "\"," << row.width << ',' << row.height << ',' << row.calls << ','
                    << number(row.microsecondsPerCall) << ",\"" << row.reference << "\","
                    << number(row.referenceMicrosecondsPerCall) << ',' << number(row.absDeviation) << '\n';
-        metricTable.push_back({{"function", row.function},
-                               {"microseconds_per_call", row.microsecondsPerCall},
-                               {"reference", row.reference},
-                               {"reference_microseconds_per_call", jsonNumberOrNull(row.referenceMicrosecondsPerCall)},
-                               {"abs_deviation", jsonNumberOrNull(row.absDeviation)}});
+        tables.metrics.push_back(
+            {{"function", row.function},
+             {"microseconds_per_call", row.microsecondsPerCall},
+             {"reference", row.reference},
+             {"reference_microseconds_per_call", jsonNumberOrNull(row.referenceMicrosecondsPerCall)},
+             {"abs_deviation", jsonNumberOrNull(row.absDeviation)}});
     }
     timeCsv << "model,source,samples,mean_error,median_error,p90_error,max_error\n";
-    nlohmann::json timeTable = nlohmann::json::array();
-    for (const TimeModelRow& row : timeRows) {
+    tables.timeModels = nlohmann::json::array();
+    for (const TimeModelRow& row : checkpoint.timeModels->rows) {
         timeCsv << row.model << ",\"" << row.source << "\"," << row.samples << ',' << number(row.mean) << ','
                 << number(row.median) << ',' << number(row.p90) << ',' << number(row.max) << '\n';
-        timeTable.push_back({{"model", row.model},
-                             {"source", row.source},
-                             {"samples", row.samples},
-                             {"mean_error", jsonNumberOrNull(row.mean)},
-                             {"median_error", jsonNumberOrNull(row.median)},
-                             {"p90_error", jsonNumberOrNull(row.p90)},
-                             {"max_error", jsonNumberOrNull(row.max)}});
+        tables.timeModels.push_back({{"model", row.model},
+                                     {"source", row.source},
+                                     {"samples", row.samples},
+                                     {"mean_error", jsonNumberOrNull(row.mean)},
+                                     {"median_error", jsonNumberOrNull(row.median)},
+                                     {"p90_error", jsonNumberOrNull(row.p90)},
+                                     {"max_error", jsonNumberOrNull(row.max)}});
     }
-
-    scenes::writeTextAtomically((dir / kBenchRunsCsv).string(), runsCsv.str());
-    scenes::writeTextAtomically((dir / kBenchAlgorithmsCsv).string(), algorithmsCsv.str());
     scenes::writeTextAtomically((dir / kBenchEvalPathsCsv).string(), pathsCsv.str());
     scenes::writeTextAtomically((dir / kBenchMetricsCsv).string(), metricsCsv.str());
     scenes::writeTextAtomically((dir / kBenchTimeModelCsv).string(), timeCsv.str());
+    return tables;
+}
+
+void printBench(const nlohmann::json& document, const BenchCheckpoint& checkpoint, const std::filesystem::path& dir,
+                bool paretoMade) {
+    const nlohmann::json& best = document["best_known"];
+    const std::int64_t lastBudget = document["evaluation_budgets"].back().get<std::int64_t>();
+    std::cout << document["scene"].get<std::string>() << " / " << document["view"].get<std::string>() << ", "
+              << document["size"].get<std::string>() << ", budget " << std::setprecision(4)
+              << document["budget_ms"].get<double>() << " ms, " << best["combinations"].get<double>()
+              << " combinations, best known " << std::setprecision(6) << best["fitness"].get<double>() << " ("
+              << best["source"].get<std::string>() << ")\n";
+    std::cout << "median over seeds at " << lastBudget << " evaluations:\n";
+    for (const nlohmann::json& row : document["algorithm_budget"]) {
+        if (row["evaluation_budget"] != lastBudget) continue;
+        std::cout << "  " << std::left << std::setw(11) << row["algorithm"].get<std::string>() << std::right << " gap "
+                  << std::setw(10) << std::setprecision(3) << row["median_gap"].get<double>() << "  wall "
+                  << std::setw(8) << row["median_wall_seconds"].get<double>() << " s\n";
+    }
+    const nlohmann::json& table = document["surrogate_table"];
+    std::cout << "  (mckp's per-view table, not in its wall time: " << table["evaluations"].get<std::int64_t>()
+              << " evaluations, " << std::setprecision(3) << table["seconds"].get<double>() << " s)\n";
+    for (const EvalPathRow& row : *checkpoint.evalPaths) {
+        if (row.workload != "random") continue;
+        std::cout << "  " << row.path << " path (" << row.mode << ", " << row.threads << " thread"
+                  << (row.threads > 1 ? "s" : "") << "): " << std::setprecision(4) << row.evaluationsPerSecond
+                  << " evaluations/s";
+        if (std::isfinite(row.maxAbsFitnessDiff))
+            std::cout << ", max |fast - full| " << std::setprecision(3) << row.maxAbsFitnessDiff;
+        std::cout << "\n";
+    }
+    for (const MetricsRow& row : *checkpoint.metrics) {
+        std::cout << "  " << std::left << std::setw(30) << row.function << std::right << std::setw(10)
+                  << std::setprecision(4) << row.microsecondsPerCall << " us/call";
+        if (std::isfinite(row.absDeviation)) std::cout << ", |deviation| " << std::setprecision(3) << row.absDeviation;
+        std::cout << "\n";
+    }
+    for (const TimeModelRow& row : checkpoint.timeModels->rows) {
+        std::cout << "  time model " << std::left << std::setw(7) << row.model << std::right << " " << row.source
+                  << ": mean error " << std::setprecision(3) << 100.0 * row.mean << "% (" << row.samples
+                  << " frames)\n";
+    }
+    for (const std::string& warning : checkpoint.timeModels->warnings) std::cout << "  note: " << warning << "\n";
+    std::cout << "wrote " << (dir / kBenchJson).string() << ", " << kBenchAlgorithmsCsv << ", " << kBenchRunsCsv << ", "
+              << kBenchEvalPathsCsv << ", " << kBenchMetricsCsv << ", " << kBenchTimeModelCsv
+              << (paretoMade ? ", bench_pareto.png" : "") << "\n";
+}
+
+void runBench(const BenchOptions& bench) {
+    const auto start = std::chrono::steady_clock::now();
+    OptimizeOptions options = bench.optimize;
+    const BenchGrid grid = parseGrid(bench);
+    const std::filesystem::path dir(bench.out);
+    const CheckpointFile checkpointFile((dir / kBenchCheckpoint).string(), "bench", "units");
+    const nlohmann::json identity = checkpointIdentity(bench);
+    BenchCheckpoint checkpoint;
+    checkpointFile.restore(bench.resume, bench.output.quiet || bench.output.json, identity,
+                           [&](const nlohmann::json& saved) { checkpoint = benchFromCheckpoint(saved); });
+
+    InterruptGuard interruptGuard;
+    const bool budgetGiven = options.budgetMs > 0.0;
+    if (!budgetGiven) options.budgetMs = std::numeric_limits<double>::max();  // set below from the view
+    PreparedScene prepared = prepareScene(options);
+    evaluation::SearchView context = prepareView(prepared, prepared.views[0], options);
+    if (!budgetGiven) {
+        options.budgetMs = defaultBudget(context);
+        context.problem.budgetMs = options.budgetMs;
+    }
+    const auto [tableEvaluations, tableSeconds] = measureSurrogateTable(context);
+    std::vector<AlgorithmRun> runs =
+        runUnits(bench, grid, options, prepared, context, checkpointFile, identity, checkpoint);
+    BestKnown best = *checkpoint.bestKnown;
+    applyBestKnown(best, runs);
+
+    const BenchTables tables = writeTables(grid, runs, checkpoint, dir);
     const Plotter plotter(dir.string());
     const PlotOutput pareto = plotter.plot(paretoPlot(readCsv((dir / kBenchAlgorithmsCsv).string()), "bench_pareto"));
     if (!pareto.made) std::cerr << "lodopt: bench: " << pareto.note << "\n";
-
     nlohmann::json document = {
         {"format", "lodopt-bench/1"},
         {"scene", prepared.scene.name},
@@ -311,8 +395,8 @@ void runBench(const BenchOptions& bench) {
         {"time_model", prepared.timeModelName},
         {"threads", options.threads},
         {"seeds", bench.seeds},
-        {"evaluation_budgets", budgets},
-        {"algorithms", algorithms},
+        {"evaluation_budgets", grid.budgets},
+        {"algorithms", grid.algorithms},
         {"searched_objects", context.setup->skipSummary().searchedObjects},
         {"best_known",
          {{"fitness", best.fitness},
@@ -324,11 +408,11 @@ void runBench(const BenchOptions& bench) {
          {{"evaluations", tableEvaluations},
           {"seconds", tableSeconds},
           {"note", "measured once per view before any run; mckp's wall time excludes it"}}},
-        {"algorithm_budget", algorithmTable},
-        {"eval_paths", pathTable},
-        {"metrics", metricTable},
-        {"time_model_errors", timeTable},
-        {"time_model_warnings", warnings},
+        {"algorithm_budget", tables.algorithms},
+        {"eval_paths", tables.paths},
+        {"metrics", tables.metrics},
+        {"time_model_errors", tables.timeModels},
+        {"time_model_warnings", checkpoint.timeModels->warnings},
         {"pareto_plot", pareto.made ? nlohmann::json("bench_pareto.png") : nlohmann::json()},
         {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()},
     };
@@ -339,42 +423,7 @@ void runBench(const BenchOptions& bench) {
         printJson(document);
         return;
     }
-    std::cout << prepared.scene.name << " / " << context.setup->camera().name << ", " << options.size << ", budget "
-              << std::setprecision(4) << options.budgetMs << " ms, " << best.combinations
-              << " combinations, best known " << std::setprecision(6) << best.fitness << " (" << best.source << ")\n";
-    std::cout << "median over seeds at " << budgets.back() << " evaluations:\n";
-    for (const nlohmann::json& row : algorithmTable) {
-        if (row["evaluation_budget"] != budgets.back()) continue;
-        std::cout << "  " << std::left << std::setw(11) << row["algorithm"].get<std::string>() << std::right << " gap "
-                  << std::setw(10) << std::setprecision(3) << row["median_gap"].get<double>() << "  wall "
-                  << std::setw(8) << row["median_wall_seconds"].get<double>() << " s\n";
-    }
-    std::cout << "  (mckp's per-view table, not in its wall time: " << tableEvaluations << " evaluations, "
-              << std::setprecision(3) << tableSeconds << " s)\n";
-    for (const EvalPathRow& row : paths) {
-        if (row.workload != "random") continue;
-        std::cout << "  " << row.path << " path (" << row.mode << ", " << row.threads << " thread"
-                  << (row.threads > 1 ? "s" : "") << "): " << std::setprecision(4) << row.evaluationsPerSecond
-                  << " evaluations/s";
-        if (std::isfinite(row.maxAbsFitnessDiff))
-            std::cout << ", max |fast - full| " << std::setprecision(3) << row.maxAbsFitnessDiff;
-        std::cout << "\n";
-    }
-    for (const MetricsRow& row : metricRows) {
-        std::cout << "  " << std::left << std::setw(30) << row.function << std::right << std::setw(10)
-                  << std::setprecision(4) << row.microsecondsPerCall << " us/call";
-        if (std::isfinite(row.absDeviation)) std::cout << ", |deviation| " << std::setprecision(3) << row.absDeviation;
-        std::cout << "\n";
-    }
-    for (const TimeModelRow& row : timeRows) {
-        std::cout << "  time model " << std::left << std::setw(7) << row.model << std::right << " " << row.source
-                  << ": mean error " << std::setprecision(3) << 100.0 * row.mean << "% (" << row.samples
-                  << " frames)\n";
-    }
-    for (const std::string& warning : warnings) std::cout << "  note: " << warning << "\n";
-    std::cout << "wrote " << (dir / kBenchJson).string() << ", " << kBenchAlgorithmsCsv << ", " << kBenchRunsCsv << ", "
-              << kBenchEvalPathsCsv << ", " << kBenchMetricsCsv << ", " << kBenchTimeModelCsv
-              << (pareto.made ? ", bench_pareto.png" : "") << "\n";
+    printBench(document, checkpoint, dir, pareto.made);
 }
 
 }  // namespace
