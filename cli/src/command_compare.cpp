@@ -147,160 +147,187 @@ std::vector<std::string> splitList(const std::string& text) {
     return items;
 }
 
+struct CompareOptions {
+    OptimizeOptions optimize;
+    std::string algorithms = "gapso,pso,ga,random,greedy,screensize,mckp";
+    int seeds = 10;
+    std::int64_t evaluations = 300;
+    std::string outDir = "out/compare";
+    bool resume = false;
+    OutputOptions output;
+};
+
+// Every (algorithm, seed) run, those in `saved` taken from there; each new one is saved and an
+// interrupt stops after it.
+std::vector<RunRecord> runAll(const CompareOptions& compare, const std::vector<std::string>& names,
+                              const OptimizeOptions& runOptions, const evaluation::SearchView& context,
+                              const CheckpointFile& checkpoint, const nlohmann::json& identity,
+                              std::map<std::string, RunRecord>& saved) {
+    const std::size_t total = names.size() * std::size_t(compare.seeds);
+    std::size_t done = 0;
+    for (const std::string& name : names) {
+        for (int seed = 1; seed <= compare.seeds; ++seed) done += saved.count(runKey(name, std::uint64_t(seed)));
+    }
+    if (done < total) pollInterrupt("compare", done, total, "run", checkpoint.path());
+    std::vector<RunRecord> runs;
+    Progress progress("compare", total - done, compare.output.quiet || compare.output.json);
+    for (const std::string& name : names) {
+        for (int seed = 1; seed <= compare.seeds; ++seed) {
+            auto found = saved.find(runKey(name, std::uint64_t(seed)));
+            if (found != saved.end()) {
+                runs.push_back(found->second);
+                continue;
+            }
+            const auto start = std::chrono::steady_clock::now();
+            RunRecord record{name, std::uint64_t(seed), runAlgorithm(context, runOptions, name, std::uint64_t(seed)),
+                             0.0};
+            record.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            saved[runKey(name, std::uint64_t(seed))] = record;
+            runs.push_back(std::move(record));
+            checkpoint.save(identity, runsToCheckpoint(saved));
+            progress.step(name + " seed " + std::to_string(seed));
+            // After the last run only the summary is left: finish it rather than stop.
+            try {
+                if (++done < total) pollInterrupt("compare", done, total, "run", checkpoint.path());
+            } catch (const Interrupted&) {
+                progress.finish();  // the message starts on a clean line
+                throw;
+            }
+        }
+    }
+    progress.finish();
+    return runs;
+}
+
+// The per-algorithm table (compare.json's "algorithms"), with compare.csv and curves.csv.
+nlohmann::json summarize(const std::vector<std::string>& names, const std::vector<RunRecord>& runs, double bestKnown,
+                         const std::filesystem::path& dir) {
+    nlohmann::json table = nlohmann::json::array();
+    std::ostringstream csv, curves;
+    csv << "algorithm,runs,median_fitness,min_fitness,max_fitness,median_evals_to_99pct,reached_99pct,"
+           "median_wall_seconds,median_evaluations\n";
+    curves << "algorithm,seed,iteration,evaluations,best_fitness,mean_fitness\n";
+    csv << std::setprecision(8);
+    curves << std::setprecision(8);
+    for (const std::string& name : names) {
+        std::vector<double> fitness, wall, toReach, evals;
+        int reached = 0;
+        for (const RunRecord& run : runs) {
+            if (run.algorithm != name) continue;
+            fitness.push_back(run.result.bestScore.fitness);
+            wall.push_back(run.wallSeconds);
+            evals.push_back(double(run.result.evaluations));
+            const std::int64_t k = evaluationsToReach(run.result, 0.99 * bestKnown);
+            if (k >= 0) {
+                ++reached;
+                toReach.push_back(double(k));
+            }
+            for (const optimizer::IterationLog& row : run.result.log) {
+                curves << name << ',' << run.seed << ',' << row.iteration << ',' << row.evaluations << ','
+                       << row.bestFitness << ',' << row.meanFitness << '\n';
+            }
+        }
+        const double minFitness = *std::min_element(fitness.begin(), fitness.end());
+        const double maxFitness = *std::max_element(fitness.begin(), fitness.end());
+        table.push_back({{"algorithm", name},
+                         {"runs", fitness.size()},
+                         {"median_fitness", median(fitness)},
+                         {"min_fitness", minFitness},
+                         {"max_fitness", maxFitness},
+                         {"median_evals_to_99pct", toReach.empty() ? nlohmann::json() : nlohmann::json(median(toReach))},
+                         {"reached_99pct", reached},
+                         {"median_wall_seconds", median(wall)},
+                         {"median_evaluations", median(evals)}});
+        csv << name << ',' << fitness.size() << ',' << median(fitness) << ',' << minFitness << ',' << maxFitness << ','
+            << (toReach.empty() ? std::string("") : std::to_string(median(toReach))) << ',' << reached << ','
+            << median(wall) << ',' << median(evals) << '\n';
+    }
+    scenes::writeTextAtomically((dir / "compare.csv").string(), csv.str());
+    scenes::writeTextAtomically((dir / "curves.csv").string(), curves.str());
+    return table;
+}
+
+void printCompare(const nlohmann::json& document, const std::filesystem::path& dir) {
+    std::cout << document["scene"].get<std::string>() << " / " << document["view"].get<std::string>() << ", budget "
+              << document["budget_ms"].get<double>() << " ms, " << document["evaluation_budget"].get<std::int64_t>()
+              << " evaluations per run, " << document["seeds"].get<int>() << " seeds, best known "
+              << std::setprecision(6) << document["best_known_fitness"].get<double>() << "\n";
+    std::cout << std::left << std::setw(12) << "algorithm" << std::right << std::setw(10) << "median" << std::setw(10)
+              << "min" << std::setw(10) << "max" << std::setw(14) << "evals→99%" << std::setw(10) << "wall s\n";
+    for (const nlohmann::json& row : document["algorithms"]) {
+        std::cout << std::left << std::setw(12) << row["algorithm"].get<std::string>() << std::right << std::fixed
+                  << std::setprecision(4) << std::setw(10) << row["median_fitness"].get<double>() << std::setw(10)
+                  << row["min_fitness"].get<double>() << std::setw(10) << row["max_fitness"].get<double>()
+                  << std::setw(14)
+                  << (row["median_evals_to_99pct"].is_null()
+                          ? std::string("-")
+                          : std::to_string(int(row["median_evals_to_99pct"].get<double>())))
+                  << std::setw(10) << std::setprecision(3) << row["median_wall_seconds"].get<double>() << "\n";
+        std::cout.unsetf(std::ios::floatfield);
+    }
+    std::cout << "wrote " << (dir / "compare.json").string() << ", compare.csv, curves.csv\n";
+}
+
+void runCompare(const CompareOptions& compare) {
+    const std::vector<std::string> names = splitList(compare.algorithms);
+    if (names.empty()) throw UsageError("--algos: empty list");
+    for (const std::string& name : names) checkAlgorithmName(name);
+    if (compare.optimize.view == "all") throw UsageError("compare: --view must name one view");
+    OptimizeOptions runOptions = compare.optimize;
+    runOptions.maxEvaluations = compare.evaluations;
+    // The evaluation budget decides; the iteration cap only stops a converged swarm that
+    // would otherwise circle through cached candidates forever.
+    runOptions.maxIterations = int(std::max<std::int64_t>(compare.evaluations, 1000));
+    runOptions.stableIterations = 0;
+
+    const std::filesystem::path dir(compare.outDir);
+    const CheckpointFile checkpoint((dir / "compare.checkpoint.json").string(), "compare", "runs");
+    const nlohmann::json identity = checkpointIdentity(runOptions, compare.evaluations);
+    std::map<std::string, RunRecord> saved;
+    checkpoint.restore(compare.resume, compare.output.quiet || compare.output.json, identity,
+                       [&](const nlohmann::json& document) { saved = runsFromCheckpoint(document); });
+    InterruptGuard interruptGuard;
+    PreparedScene prepared = prepareScene(runOptions);
+    evaluation::SearchView context = prepareView(prepared, prepared.views[0], runOptions);
+    const std::vector<RunRecord> runs = runAll(compare, names, runOptions, context, checkpoint, identity, saved);
+
+    double bestKnown = 0.0;
+    for (const RunRecord& run : runs) bestKnown = std::max(bestKnown, run.result.bestScore.fitness);
+    nlohmann::json document = {{"scene", prepared.scene.name},
+                               {"view", context.setup->camera().name},
+                               {"budget_ms", runOptions.budgetMs},
+                               {"evaluation_budget", compare.evaluations},
+                               {"seeds", compare.seeds},
+                               {"best_known_fitness", bestKnown},
+                               {"searched_objects", context.setup->skipSummary().searchedObjects},
+                               {"algorithms", summarize(names, runs, bestKnown, dir)}};
+    writeJsonFile((dir / "compare.json").string(), document);
+    checkpoint.remove();  // every run is now in the outputs
+    if (compare.output.json) {
+        printJson(document);
+        return;
+    }
+    printCompare(document, dir);
+}
+
 }  // namespace
 
 void addCompareCommand(CLI::App& app) {
-    auto options = std::make_shared<OptimizeOptions>();
-    auto algorithms = std::make_shared<std::string>("gapso,pso,ga,random,greedy,screensize,mckp");
-    auto seeds = std::make_shared<int>(10);
-    auto evaluations = std::make_shared<std::int64_t>(300);
-    auto outDir = std::make_shared<std::string>("out/compare");
-    auto resume = std::make_shared<bool>(false);
-    auto output = std::make_shared<OutputOptions>();
+    auto compare = std::make_shared<CompareOptions>();
     CLI::App* command = app.add_subcommand("compare", "Compare algorithms over seeds at equal evaluation budgets");
-    addOptimizeOptions(*command, *options);
+    addOptimizeOptions(*command, compare->optimize);
     command->remove_option(command->get_option("--seed"));  // the runs take seeds 1..--seeds
-    command->add_option("--algos", *algorithms, "Comma-separated algorithms")->capture_default_str();
-    command->add_option("--seeds", *seeds, "Seeds 1..N per algorithm")->check(CLI::Range(1, 1000))->capture_default_str();
-    command->add_option("--evals", *evaluations, "Evaluation budget of every run")
+    command->add_option("--algos", compare->algorithms, "Comma-separated algorithms")->capture_default_str();
+    command->add_option("--seeds", compare->seeds, "Seeds 1..N per algorithm")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    command->add_option("--evals", compare->evaluations, "Evaluation budget of every run")
         ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 30))
         ->capture_default_str();
-    command->add_option("--out", *outDir, "Output folder")->capture_default_str();
-    addResumeFlag(*command, *resume, "the runs in OUT/compare.checkpoint.json");
-    addOutputOptions(*command, *output);
-    command->callback([=] {
-        const std::vector<std::string> names = splitList(*algorithms);
-        if (names.empty()) throw UsageError("--algos: empty list");
-        for (const std::string& name : names) checkAlgorithmName(name);
-        if (options->view == "all") throw UsageError("compare: --view must name one view");
-        OptimizeOptions runOptions = *options;
-        runOptions.maxEvaluations = *evaluations;
-        // The evaluation budget decides; the iteration cap only stops a converged swarm that
-        // would otherwise circle through cached candidates forever.
-        runOptions.maxIterations = int(std::max<std::int64_t>(*evaluations, 1000));
-        runOptions.stableIterations = 0;
-
-        const std::filesystem::path dir(*outDir);
-        const CheckpointFile checkpoint((dir / "compare.checkpoint.json").string(), "compare", "runs");
-        const nlohmann::json identity = checkpointIdentity(runOptions, *evaluations);
-        std::map<std::string, RunRecord> saved;
-        checkpoint.restore(*resume, output->quiet || output->json, identity,
-                           [&](const nlohmann::json& document) { saved = runsFromCheckpoint(document); });
-        const std::size_t total = names.size() * std::size_t(*seeds);
-        std::size_t done = 0;
-        for (const std::string& name : names) {
-            for (int seed = 1; seed <= *seeds; ++seed) done += saved.count(runKey(name, std::uint64_t(seed)));
-        }
-
-        InterruptGuard interruptGuard;
-        PreparedScene prepared = prepareScene(runOptions);
-        evaluation::SearchView context = prepareView(prepared, prepared.views[0], runOptions);
-        if (done < total) pollInterrupt("compare", done, total, "run", checkpoint.path());
-
-        std::vector<RunRecord> runs;
-        Progress progress("compare", total - done, output->quiet || output->json);
-        for (const std::string& name : names) {
-            for (int seed = 1; seed <= *seeds; ++seed) {
-                auto found = saved.find(runKey(name, std::uint64_t(seed)));
-                if (found != saved.end()) {
-                    runs.push_back(found->second);
-                    continue;
-                }
-                const auto start = std::chrono::steady_clock::now();
-                RunRecord record{name, std::uint64_t(seed), runAlgorithm(context, runOptions, name, std::uint64_t(seed)),
-                                 0.0};
-                record.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                saved[runKey(name, std::uint64_t(seed))] = record;
-                runs.push_back(std::move(record));
-                checkpoint.save(identity, runsToCheckpoint(saved));
-                progress.step(name + " seed " + std::to_string(seed));
-                // After the last run only the summary is left: finish it rather than stop.
-                try {
-                    if (++done < total) pollInterrupt("compare", done, total, "run", checkpoint.path());
-                } catch (const Interrupted&) {
-                    progress.finish();  // the message starts on a clean line
-                    throw;
-                }
-            }
-        }
-        progress.finish();
-
-        double bestKnown = 0.0;
-        for (const RunRecord& run : runs) bestKnown = std::max(bestKnown, run.result.bestScore.fitness);
-        nlohmann::json table = nlohmann::json::array();
-        std::ostringstream csv, curves;
-        csv << "algorithm,runs,median_fitness,min_fitness,max_fitness,median_evals_to_99pct,reached_99pct,"
-               "median_wall_seconds,median_evaluations\n";
-        curves << "algorithm,seed,iteration,evaluations,best_fitness,mean_fitness\n";
-        csv << std::setprecision(8);
-        curves << std::setprecision(8);
-        for (const std::string& name : names) {
-            std::vector<double> fitness, wall, toReach, evals;
-            int reached = 0;
-            for (const RunRecord& run : runs) {
-                if (run.algorithm != name) continue;
-                fitness.push_back(run.result.bestScore.fitness);
-                wall.push_back(run.wallSeconds);
-                evals.push_back(double(run.result.evaluations));
-                const std::int64_t k = evaluationsToReach(run.result, 0.99 * bestKnown);
-                if (k >= 0) {
-                    ++reached;
-                    toReach.push_back(double(k));
-                }
-                for (const optimizer::IterationLog& row : run.result.log) {
-                    curves << name << ',' << run.seed << ',' << row.iteration << ',' << row.evaluations << ','
-                           << row.bestFitness << ',' << row.meanFitness << '\n';
-                }
-            }
-            const double minFitness = *std::min_element(fitness.begin(), fitness.end());
-            const double maxFitness = *std::max_element(fitness.begin(), fitness.end());
-            table.push_back({{"algorithm", name},
-                             {"runs", fitness.size()},
-                             {"median_fitness", median(fitness)},
-                             {"min_fitness", minFitness},
-                             {"max_fitness", maxFitness},
-                             {"median_evals_to_99pct", toReach.empty() ? nlohmann::json() : nlohmann::json(median(toReach))},
-                             {"reached_99pct", reached},
-                             {"median_wall_seconds", median(wall)},
-                             {"median_evaluations", median(evals)}});
-            csv << name << ',' << fitness.size() << ',' << median(fitness) << ',' << minFitness << ',' << maxFitness
-                << ',' << (toReach.empty() ? std::string("") : std::to_string(median(toReach))) << ',' << reached << ','
-                << median(wall) << ',' << median(evals) << '\n';
-        }
-        nlohmann::json document = {{"scene", prepared.scene.name},
-                                   {"view", context.setup->camera().name},
-                                   {"budget_ms", runOptions.budgetMs},
-                                   {"evaluation_budget", *evaluations},
-                                   {"seeds", *seeds},
-                                   {"best_known_fitness", bestKnown},
-                                   {"searched_objects", context.setup->skipSummary().searchedObjects},
-                                   {"algorithms", table}};
-        writeJsonFile((dir / "compare.json").string(), document);
-        scenes::writeTextAtomically((dir / "compare.csv").string(), csv.str());
-        scenes::writeTextAtomically((dir / "curves.csv").string(), curves.str());
-        checkpoint.remove();  // every run is now in the outputs
-        if (output->json) {
-            printJson(document);
-            return;
-        }
-        std::cout << prepared.scene.name << " / " << context.setup->camera().name << ", budget " << runOptions.budgetMs
-                  << " ms, " << *evaluations << " evaluations per run, " << *seeds << " seeds, best known "
-                  << std::setprecision(6) << bestKnown << "\n";
-        std::cout << std::left << std::setw(12) << "algorithm" << std::right << std::setw(10) << "median"
-                  << std::setw(10) << "min" << std::setw(10) << "max" << std::setw(14) << "evals→99%" << std::setw(10)
-                  << "wall s\n";
-        for (const nlohmann::json& row : table) {
-            std::cout << std::left << std::setw(12) << row["algorithm"].get<std::string>() << std::right << std::fixed
-                      << std::setprecision(4) << std::setw(10) << row["median_fitness"].get<double>() << std::setw(10)
-                      << row["min_fitness"].get<double>() << std::setw(10) << row["max_fitness"].get<double>()
-                      << std::setw(14)
-                      << (row["median_evals_to_99pct"].is_null() ? std::string("-")
-                                                                 : std::to_string(int(row["median_evals_to_99pct"].get<double>())))
-                      << std::setw(10) << std::setprecision(3) << row["median_wall_seconds"].get<double>() << "\n";
-            std::cout.unsetf(std::ios::floatfield);
-        }
-        std::cout << "wrote " << (dir / "compare.json").string() << ", compare.csv, curves.csv\n";
-    });
+    command->add_option("--out", compare->outDir, "Output folder")->capture_default_str();
+    addResumeFlag(*command, compare->resume, "the runs in OUT/compare.checkpoint.json");
+    addOutputOptions(*command, compare->output);
+    command->callback([compare] { runCompare(*compare); });
 }
 
 }  // namespace lodopt::cli
