@@ -199,36 +199,10 @@ bool anyFinite(const std::vector<double>& values) {
 
 }  // namespace
 
-void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
-    const CsvTable frames = readCsv(framesPath.string());
-    for (const char* column : {"frame", "predicted_ms"}) {
-        if (!frames.has(column)) throw UsageError(framesPath.string() + ": no column '" + column + "'");
-    }
-    const fs::path summaryPath = framesPath.parent_path() / "summary.json";
-    nlohmann::json summary;
-    if (fs::exists(summaryPath)) summary = readJsonFile(summaryPath.string());
-    context.html.heading(2, "schedule: " + jsonText(summary, "scene", "?") + " / " + jsonText(summary, "path", "?"));
-    context.html.paragraph("From " + framesPath.string() + (summary.is_null() ? "" : " and summary.json") + ", " +
-                           std::to_string(frames.rows.size()) + " frames.");
-    if (!summary.is_null()) context.html.details("Summary (summary.json)", summary.dump(2));
-    if (frames.rows.empty()) return;
-    const double budget = jsonNumber(summary, "budget_ms", NAN);
-    // Goal 1 beside what the machine's clock allows (docs/scheduler.md "Measurement ceiling").
-    if (summary.is_object() && summary.contains("measured_vs_budget")) {
-        const nlohmann::json binding = summary["measured_vs_budget"].value("binding", nlohmann::json());
-        std::string text = "Measured within ±10% of the budget on " +
-                           formatNumber(100.0 * jsonNumber(binding, "within_10_percent", NAN), 3) + "% of the " +
-                           jsonText(binding, "frames", "?") + " frames where the budget binds";
-        if (summary.contains("measurement_ceiling")) {
-            text += "; measurement ceiling " +
-                    formatNumber(100.0 * jsonNumber(summary["measurement_ceiling"], "ceiling", NAN), 3) +
-                    "% (the largest share of one frame's repeated measurements a ±10% band holds: no scheduler "
-                    "can expect more on this machine)";
-        }
-        context.html.paragraph(text + ".");
-    }
+namespace {
 
-    // Frame times along the path.
+// Frame times along the path, with the budget.
+void plotScheduleTimes(ReportContext& context, const CsvTable& frames, double budget) {
     const std::vector<std::string> series = {"predicted_ms", "measured_ms", "baseline_measured_ms",
                                              "exact_predicted_ms", "finest_predicted_ms"};
     const std::vector<std::string> labels = {"predicted (scheduled)", "measured (scheduled)", "measured (unscheduled)",
@@ -272,7 +246,14 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
                  "Predicted and measured frame time per frame (measured columns appear when schedule ran with "
                  "--render); the all-finest prediction is cut off where it leaves the axis.");
 
-    // Levels histogram over frames: objects at each level per frame, stacked.
+}
+
+}  // namespace
+
+namespace {
+
+// Levels over frames: objects at each level per frame, stacked, and their shares.
+void plotScheduleLevels(ReportContext& context, const CsvTable& frames) {
     const std::vector<int> levels = levelColumns(frames);
     if (!levels.empty()) {
         std::ostringstream stacked, plot;
@@ -315,7 +296,14 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
         context.html.table({"level", "object-frames", "share"}, rows);
     }
 
-    // Decision time and switches.
+}
+
+}  // namespace
+
+namespace {
+
+// Decision time and switches per frame.
+void plotScheduleDecisions(ReportContext& context, const CsvTable& frames) {
     if (frames.has("decision_us")) {
         std::ostringstream decision;
         decision << "# frame decision_us switches\n";
@@ -343,7 +331,14 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
         context.plot(spec, "The scheduler's own cost per frame, and how many drawn objects changed level.");
     }
 
-    // Fitness along the path, when schedule scored its frames.
+}
+
+}  // namespace
+
+namespace {
+
+// Fitness along the path, when schedule scored its frames.
+void plotScheduleFitness(ReportContext& context, const CsvTable& frames) {
     if (frames.has("fitness") && anyFinite(frames.numbers("fitness"))) {
         std::ostringstream fitness;
         fitness << "# frame fitness baseline_fitness\n";
@@ -364,6 +359,43 @@ void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
         spec.height = 340;
         context.plot(spec, "Fused fitness of every frame against its full-detail reference.");
     }
+}
+
+}  // namespace
+
+void addScheduleSection(ReportContext& context, const fs::path& framesPath) {
+    const CsvTable frames = readCsv(framesPath.string());
+    for (const char* column : {"frame", "predicted_ms"}) {
+        if (!frames.has(column)) throw UsageError(framesPath.string() + ": no column '" + column + "'");
+    }
+    const fs::path summaryPath = framesPath.parent_path() / "summary.json";
+    nlohmann::json summary;
+    if (fs::exists(summaryPath)) summary = readJsonFile(summaryPath.string());
+    context.html.heading(2, "schedule: " + jsonText(summary, "scene", "?") + " / " + jsonText(summary, "path", "?"));
+    context.html.paragraph("From " + framesPath.string() + (summary.is_null() ? "" : " and summary.json") + ", " +
+                           std::to_string(frames.rows.size()) + " frames.");
+    if (!summary.is_null()) context.html.details("Summary (summary.json)", summary.dump(2));
+    if (frames.rows.empty()) return;
+    const double budget = jsonNumber(summary, "budget_ms", NAN);
+    // Goal 1 beside what the machine's clock allows (docs/scheduler.md "Measurement ceiling").
+    if (summary.is_object() && summary.contains("measured_vs_budget")) {
+        const nlohmann::json binding = summary["measured_vs_budget"].value("binding", nlohmann::json());
+        std::string text = "Measured within ±10% of the budget on " +
+                           formatNumber(100.0 * jsonNumber(binding, "within_10_percent", NAN), 3) + "% of the " +
+                           jsonText(binding, "frames", "?") + " frames where the budget binds";
+        if (summary.contains("measurement_ceiling")) {
+            text += "; measurement ceiling " +
+                    formatNumber(100.0 * jsonNumber(summary["measurement_ceiling"], "ceiling", NAN), 3) +
+                    "% (the largest share of one frame's repeated measurements a ±10% band holds: no scheduler "
+                    "can expect more on this machine)";
+        }
+        context.html.paragraph(text + ".");
+    }
+
+    plotScheduleTimes(context, frames, budget);
+    plotScheduleLevels(context, frames);
+    plotScheduleDecisions(context, frames);
+    plotScheduleFitness(context, frames);
 }
 
 void addTuneSection(ReportContext& context, const fs::path& file, const nlohmann::json& document) {
