@@ -88,13 +88,9 @@ struct CityMaterials {
 };
 
 CityMaterials addCityMaterials(Scene& scene, std::uint32_t seed) {
-    auto addTexture = [&](Texture texture) {
-        scene.textures.push_back(std::move(texture));
-        return int(scene.textures.size() - 1);
-    };
+    auto addTexture = [&](Texture texture) { return procedural::addTexture(scene, std::move(texture)); };
     auto addMaterial = [&](std::string name, glm::vec3 color, int texture) {
-        scene.materials.push_back(diffuseMaterial(std::move(name), color, texture));
-        return int(scene.materials.size() - 1);
+        return procedural::addDiffuseMaterial(scene, std::move(name), color, texture);
     };
     const int wall = addTexture(procedural::makePlasterAndWindowTexture("plaster_window_bay", 64, seed));
     const int facade = addTexture(procedural::makeFacadeTexture("facade_bay", 64, seed + 2u));

@@ -76,13 +76,9 @@ Terrain makeTerrain(std::uint32_t seed) {
 // sizes. Returns the tree materials per species and sets the two terrain materials.
 std::array<forest::TreeMaterials, forest::kSpeciesCount> addForestMaterials(Scene& scene, std::uint32_t seed,
                                                                             int& grass, int& grassSmall) {
-    auto addTexture = [&](Texture texture) {
-        scene.textures.push_back(std::move(texture));
-        return int(scene.textures.size() - 1);
-    };
+    auto addTexture = [&](Texture texture) { return procedural::addTexture(scene, std::move(texture)); };
     auto addMaterial = [&](std::string name, glm::vec3 color, int texture) {
-        scene.materials.push_back(diffuseMaterial(std::move(name), color, texture));
-        return int(scene.materials.size() - 1);
+        return procedural::addDiffuseMaterial(scene, std::move(name), color, texture);
     };
     std::array<forest::TreeMaterials, forest::kSpeciesCount> result;
     for (int s = 0; s < forest::kSpeciesCount; ++s) {

@@ -12,12 +12,13 @@
 #include "scenes/builtin.hpp"
 #include "scenes/mesh_builder.hpp"
 
+#include "procedural.hpp"
+
 namespace lodopt::scenes {
 namespace {
 
 int addMaterial(Scene& scene, const char* name, glm::vec3 color, int texture = -1) {
-    scene.materials.push_back(diffuseMaterial(name, color, texture));
-    return static_cast<int>(scene.materials.size()) - 1;
+    return procedural::addDiffuseMaterial(scene, name, color, texture);
 }
 
 // Hull plating: anti-fouling red below the waterline, a white boot stripe, dark topsides
@@ -45,8 +46,7 @@ int addHullTexture(Scene& scene, int size) {
             p[3] = 255;
         }
     }
-    scene.textures.push_back(std::move(texture));
-    return static_cast<int>(scene.textures.size()) - 1;
+    return procedural::addTexture(scene, std::move(texture));
 }
 
 // A hull lofted along +X: `sections` cross-sections of `profilePoints` points each on a

@@ -236,4 +236,14 @@ CameraPath makeLookAheadPath(std::string name, float framesPerSecond, const std:
     return path;
 }
 
+int addTexture(Scene& scene, Texture texture) {
+    scene.textures.push_back(std::move(texture));
+    return int(scene.textures.size() - 1);
+}
+
+int addDiffuseMaterial(Scene& scene, std::string name, glm::vec3 color, int baseColorTexture) {
+    scene.materials.push_back(diffuseMaterial(std::move(name), color, baseColorTexture));
+    return int(scene.materials.size() - 1);
+}
+
 }  // namespace lodopt::scenes::procedural

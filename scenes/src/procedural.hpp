@@ -64,6 +64,10 @@ void appendTriangle(Mesh& mesh, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec2
 // Appends `source`'s vertices and triangles (its material is ignored).
 void appendMesh(Mesh& mesh, const Mesh& source);
 
+// Appends to the scene and returns the new index.
+int addTexture(Scene& scene, Texture texture);
+int addDiffuseMaterial(Scene& scene, std::string name, glm::vec3 color, int baseColorTexture = -1);
+
 // Centripetal Catmull-Rom spline through `points` (>= 2), sampled at `count` (>= 2) points
 // evenly spaced in arc length, first and last point included.
 std::vector<glm::vec3> sampleSplineEvenly(const std::vector<glm::vec3>& points, int count);
