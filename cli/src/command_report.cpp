@@ -122,20 +122,12 @@ struct ReportCommandOptions {
     OutputOptions output;
 };
 
-void runReport(const ReportCommandOptions& options) {
-    const fs::path input(options.input);
-    if (!fs::exists(input)) throw UsageError(options.input + ": no such file or folder");
-    const bool folder = fs::is_directory(input);
-    const fs::path out = !options.out.empty() ? fs::path(options.out)
-                         : folder             ? input / "report.html"
-                                              : input.parent_path() / (input.stem().string() + "_report.html");
-    const fs::path plotDir = out.parent_path() / (out.stem().string() + "_files");
-    fs::create_directories(plotDir);
-
+// The outputs `input` holds (a folder is scanned, `other` gets what is not recognised); throws
+// UsageError when there is none.
+std::vector<Found> findOutputs(const fs::path& input, const fs::path& plotDir, std::vector<fs::path>& other) {
+    const std::string name = input.string();
     std::vector<Found> found;
-    std::vector<fs::path> other;
-    const fs::path root = folder ? input : input.parent_path();
-    if (folder) {
+    if (fs::is_directory(input)) {
         scanFolder(input, 0, plotDir, found, other);
     } else if (input.filename() == "result.json") {
         found.push_back({Kind::Optimize, input.parent_path()});
@@ -146,15 +138,53 @@ void runReport(const ReportCommandOptions& options) {
     } else if (input.extension() == ".csv") {
         found.push_back({Kind::Schedule, input});
     } else if (input.extension() != ".json" || !classifyJson(input, found)) {
-        throw UsageError(options.input +
+        throw UsageError(name +
                          ": not an output lodopt report knows (a folder of optimize, compare, "
                          "schedule or bench, a tune coefficients file or a calibrate profile)");
     }
     if (found.empty()) {
-        throw UsageError(options.input +
+        throw UsageError(name +
                          ": no output of optimize (result.json), compare (compare.json), schedule "
                          "(frames.csv), bench (bench.json), tune or calibrate found");
     }
+    return found;
+}
+
+void addSection(ReportContext& context, const Found& item) {
+    switch (item.kind) {
+        case Kind::Optimize:
+            addOptimizeSection(context, item.path);
+            break;
+        case Kind::Compare:
+            addCompareSection(context, item.path);
+            break;
+        case Kind::Bench:
+            addBenchSection(context, item.path);
+            break;
+        case Kind::Schedule:
+            addScheduleSection(context, item.path);
+            break;
+        case Kind::Tune:
+            addTuneSection(context, item.path, readJsonFile(item.path.string()));
+            break;
+        case Kind::Profile:
+            addProfileSection(context, item.path);
+            break;
+    }
+}
+
+void runReport(const ReportCommandOptions& options) {
+    const fs::path input(options.input);
+    if (!fs::exists(input)) throw UsageError(options.input + ": no such file or folder");
+    const bool folder = fs::is_directory(input);
+    const fs::path out = !options.out.empty() ? fs::path(options.out)
+                         : folder             ? input / "report.html"
+                                              : input.parent_path() / (input.stem().string() + "_report.html");
+    const fs::path plotDir = out.parent_path() / (out.stem().string() + "_files");
+    fs::create_directories(plotDir);
+    std::vector<fs::path> other;
+    const std::vector<Found> found = findOutputs(input, plotDir, other);
+    const fs::path root = folder ? input : input.parent_path();
 
     const Plotter plotter(plotDir.string());
     const fs::path canonical = fs::weakly_canonical(input);
@@ -162,8 +192,9 @@ void runReport(const ReportCommandOptions& options) {
                     (canonical.filename().empty() ? canonical.string() : canonical.filename().string()));
     html.raw("<p class=\"meta\">" +
              escapeHtml("From " + canonical.string() + ", " + timemodel::currentDateUtc() +
-                        ", lodopt 0.1.0. Plots: " + plotter.description() + "; their data and gnuplot scripts are in " +
-                        plotDir.filename().string() + "/ beside this page.") +
+                        ", lodopt " LODOPT_VERSION ". Plots: " + plotter.description() +
+                        "; their data and gnuplot scripts are in " + plotDir.filename().string() +
+                        "/ beside this page.") +
              "</p>\n");
     if (!plotter.available()) html.note("No plots could be drawn: " + plotter.description() + ".");
     nlohmann::json sections = nlohmann::json::array();
@@ -173,26 +204,7 @@ void runReport(const ReportCommandOptions& options) {
             prefixOf(root, fs::is_directory(item.path) ? item.path : item.path.parent_path()) +
                 (item.kind == Kind::Tune || item.kind == Kind::Profile ? item.path.stem().string() + "_"
                                                                        : std::string())};
-        switch (item.kind) {
-            case Kind::Optimize:
-                addOptimizeSection(context, item.path);
-                break;
-            case Kind::Compare:
-                addCompareSection(context, item.path);
-                break;
-            case Kind::Bench:
-                addBenchSection(context, item.path);
-                break;
-            case Kind::Schedule:
-                addScheduleSection(context, item.path);
-                break;
-            case Kind::Tune:
-                addTuneSection(context, item.path, readJsonFile(item.path.string()));
-                break;
-            case Kind::Profile:
-                addProfileSection(context, item.path);
-                break;
-        }
+        addSection(context, item);
         sections.push_back({{"kind", kindName(item.kind)}, {"path", item.path.string()}});
     }
     if (!other.empty()) {

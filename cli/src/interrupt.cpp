@@ -124,7 +124,8 @@ std::string resumeCommandLine() {
     std::string line;
     for (const std::string& w : words) {
         hasResume = hasResume || w == "--resume";
-        line += (line.empty() ? "" : " ") + shellQuote(w);
+        if (!line.empty()) line += ' ';
+        line += shellQuote(w);
     }
     if (!hasResume) line += " --resume";
     return line;
