@@ -140,6 +140,38 @@ nlohmann::json windowGroupsJson(const optimizer::Evaluator* evaluator) {
             {"bytes", stats.bytes}};
 }
 
+// Level per object by name ("object<i>" when unnamed, "#<i>" appended to a repeated name).
+nlohmann::json levelsByName(const scenes::Scene& scene, const scenes::Combination& levels) {
+    nlohmann::json levelMap = nlohmann::json::object();
+    std::map<std::string, int> seen;
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        std::string key = scene.objects[o].name.empty() ? "object" + std::to_string(o) : scene.objects[o].name;
+        if (seen[key]++ > 0) key += "#" + std::to_string(o);
+        levelMap[key] = levels[o];
+    }
+    return levelMap;
+}
+
+// What the view left out of the search, and why.
+nlohmann::json skippedJson(const scenes::Scene& scene, const evaluation::ViewSetup& setup) {
+    nlohmann::json skipped = nlohmann::json::object();
+    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+        const evaluation::ObjectSetup& object = setup.objects()[o];
+        if (object.skip != evaluation::SkipReason::None) skipped[scene.objects[o].name] = evaluation::toString(object.skip);
+    }
+    const evaluation::SkipSummary& skip = setup.skipSummary();
+    return {{"outside_frustum", skip.outsideFrustum},
+            {"below_one_pixel", skip.belowOnePixel},
+            {"hidden", skip.hidden},
+            {"merged_levels", skip.mergedLevels},
+            {"searched_objects", skip.searchedObjects},
+            {"objects", skipped}};
+}
+
+nlohmann::json entropyJson(const metrics::EntropyComponent& c) {
+    return {{"computed", c.computed}, {"candidate", c.candidate}, {"reference", c.reference}, {"fidelity", c.fidelity}};
+}
+
 }  // namespace
 
 ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& options,
@@ -164,25 +196,6 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
     ViewRun run;
     run.optimizedImage = prepared.renderer->render(levels, setup.camera());
 
-    nlohmann::json levelMap = nlohmann::json::object();
-    std::map<std::string, int> seen;
-    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-        std::string key = scene.objects[o].name.empty() ? "object" + std::to_string(o) : scene.objects[o].name;
-        if (seen[key]++ > 0) key += "#" + std::to_string(o);
-        levelMap[key] = levels[o];
-    }
-    nlohmann::json skipped = nlohmann::json::object();
-    for (std::size_t o = 0; o < scene.objects.size(); ++o) {
-        const evaluation::ObjectSetup& object = setup.objects()[o];
-        if (object.skip != evaluation::SkipReason::None) skipped[scene.objects[o].name] = evaluation::toString(object.skip);
-    }
-    const evaluation::SkipSummary& skip = setup.skipSummary();
-    auto entropyJson = [](const metrics::EntropyComponent& c) {
-        return nlohmann::json{{"computed", c.computed},
-                              {"candidate", c.candidate},
-                              {"reference", c.reference},
-                              {"fidelity", c.fidelity}};
-    };
     run.json = {
         {"scene", scene.name},
         {"view", setup.camera().name},
@@ -194,7 +207,7 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
         {"fill_probability",
          optimizer::isSwarmAlgorithm(algorithm) ? nlohmann::json(effectiveFillProbability(options)) : nlohmann::json(nullptr)},
         {"eval_path", options.evalPath},
-        {"levels", levelMap},
+        {"levels", levelsByName(scene, levels)},
         {"combination", levels},
         {"fitness", answer.fitness},
         {"search_fitness", result.bestScore.fitness},
@@ -210,13 +223,7 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
         {"cache_hits", result.cacheHits},
         {"iterations", result.iterations},
         {"stop_reason", std::string(optimizer::toString(result.stopReason))},
-        {"skipped_objects",
-         {{"outside_frustum", skip.outsideFrustum},
-          {"below_one_pixel", skip.belowOnePixel},
-          {"hidden", skip.hidden},
-          {"merged_levels", skip.mergedLevels},
-          {"searched_objects", skip.searchedObjects},
-          {"objects", skipped}}},
+        {"skipped_objects", skippedJson(scene, setup)},
         {"owned_windows", ownedWindowsJson(context.evaluator.get())},
         {"window_groups", windowGroupsJson(context.evaluator.get())},
         {"setup_seconds", setupSeconds},
