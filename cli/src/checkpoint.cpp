@@ -12,7 +12,7 @@ CheckpointFile::CheckpointFile(std::string path, std::string command, std::strin
       mUnits(std::move(units)),
       mFormat("lodopt-" + mCommand + "-checkpoint/1") {}
 
-nlohmann::json CheckpointFile::restore(bool resume, bool quiet, const nlohmann::json& identity,
+bool CheckpointFile::restore(bool resume, bool quiet, const nlohmann::json& identity,
                                        const std::function<void(const nlohmann::json& saved)>& read) const {
     if (!std::filesystem::exists(mPath)) {
         if (resume && !quiet) {
@@ -20,16 +20,15 @@ nlohmann::json CheckpointFile::restore(bool resume, bool quiet, const nlohmann::
                       << std::filesystem::path(mPath).parent_path().string() << ", starting from the first "
                       << mUnits.substr(0, mUnits.size() - 1) << "\n";
         }
-        return nullptr;
+        return false;
     }
     if (!resume) {
         throw UsageError(mPath + " holds the " + mUnits + " of an interrupted " + mCommand +
                          ": add --resume to continue it, or delete the file to start over");
     }
-    nlohmann::json saved;
     try {
         std::ifstream in(mPath);
-        saved = nlohmann::json::parse(in);
+        const nlohmann::json saved = nlohmann::json::parse(in);
         if (saved.at("format") != mFormat) throw std::invalid_argument("unknown format");
         checkIdentity(mPath, saved.at("options"), identity);
         read(saved);
@@ -39,7 +38,7 @@ nlohmann::json CheckpointFile::restore(bool resume, bool quiet, const nlohmann::
         throw UsageError(mPath + ": not a readable " + mCommand + " checkpoint (" + error.what() +
                          "); delete it to start over");
     }
-    return saved;
+    return true;
 }
 
 void CheckpointFile::save(const nlohmann::json& identity, const nlohmann::json& units) const {

@@ -23,12 +23,12 @@ public:
 
     const std::string& path() const { return mPath; }
 
-    // The saved document when the file exists and `resume` is set, passed to `read` for the
-    // command's units; null when there is no file. Throws UsageError when the file exists
+    // When the file exists and `resume` is set, passes the saved document to `read` for the
+    // command's units and returns true; false when there is no file. Throws UsageError when the file exists
     // without `resume`, was written with other options (checkIdentity), or is unreadable (any
     // exception from `read` other than UsageError). Without a file, with `resume` and not
     // `quiet`, says on stderr that the run starts from the first unit.
-    nlohmann::json restore(bool resume, bool quiet, const nlohmann::json& identity,
+    bool restore(bool resume, bool quiet, const nlohmann::json& identity,
                            const std::function<void(const nlohmann::json& saved)>& read) const;
 
     // Writes {"format", "options": identity} and `units`' members atomically.

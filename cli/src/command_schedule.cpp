@@ -382,13 +382,13 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     ScheduleRun run{options, scene, path, settings, parameters, mode, estimator.name, index.objectCount(), 0.0, 1.0, {}, {}};
     run.setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
 
-    evaluation::ScheduleWalk walk(scene, path, frameScheduler, renderer.get(), walkOptions(options));
+    const evaluation::WalkOptions walking = walkOptions(options);
+    evaluation::ScheduleWalk walk(scene, path, frameScheduler, renderer.get(), walking);
     run.rows = walkFrames(walk, options, output, path, frames, checkpoint, identity, std::move(restored));
     run.finalFeedbackScale = frameScheduler.model().feedbackScale();
     if (renderer && options.noiseProbe > 0) {
-        const evaluation::WalkOptions timing = walkOptions(options);
         run.ceiling = evaluation::probeMeasurementCeiling(*renderer, path, run.rows, options.noiseProbe,
-                                                          options.repeats, timing.statistic);
+                                                          walking.repeats, walking.statistic);
     }
 
     const ScheduleTotals totals = totalsOf(run.rows);

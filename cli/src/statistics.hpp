@@ -3,11 +3,12 @@
 
 #include <vector>
 
+#include "timemodel/timing.hpp"
+
 namespace lodopt::cli {
 
-// Middle value, the mean of the two middle ones for an even count; NaN for an empty list (JSON
-// null), so that a missing median never reads as a measured 0.
-double median(std::vector<double> values);
+// The project's one median (NaN for an empty list).
+using timemodel::median;
 
 // Median, 90th percentile (nearest rank), max and mean of `values` (all 0 for an empty list:
 // the schedule's per-frame columns, where no frame means nothing was spent).

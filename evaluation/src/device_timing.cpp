@@ -18,13 +18,6 @@ double processCpuMs() {
     return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
 }
 
-// `values` non-empty.
-double medianOf(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -75,7 +68,7 @@ DrawTimes timeDraws(renderer::Renderer& renderer, const scenes::Combination& com
         cpu.push_back(processCpuMs() - cpuStart);
         wall.push_back(std::chrono::duration<double, std::milli>(wallStop - wallStart).count());
     }
-    return {*std::min_element(wall.begin(), wall.end()), medianOf(wall), medianOf(cpu)};
+    return {*std::min_element(wall.begin(), wall.end()), timemodel::median(wall), timemodel::median(cpu)};
 }
 
 double batchTime(const DrawTimes& times, const std::string& clock) {

@@ -6,6 +6,7 @@
 
 #include "scheduler/measurement.hpp"
 #include "timemodel/features.hpp"
+#include "timemodel/timing.hpp"
 
 namespace lodopt::evaluation {
 
@@ -161,9 +162,9 @@ MeasurementCeiling probeMeasurementCeiling(renderer::Renderer& renderer, const s
         probe.frame = frames[r].frame;
         probe.measurements = measurements;
         probe.ceiling = scheduler::bandCeiling(times, result.tolerance);
+        probe.medianMs = timemodel::median(times);
         std::sort(times.begin(), times.end());
         const std::size_t n = times.size();
-        probe.medianMs = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
         auto ratioAt = [&](double q) { return times[std::size_t(q * double(n - 1) + 0.5)] / probe.medianMs; };
         probe.p10Ratio = ratioAt(0.1);
         probe.p90Ratio = ratioAt(0.9);

@@ -43,12 +43,15 @@ double TimeModelCost::predictMs(const optimizer::Combination& combination) const
     return clampMs(mEstimator(featuresOf(combination)));
 }
 
+double TimeModelCost::stepMs(const timemodel::FrameFeatures& before, std::size_t variable, int from, int to) const {
+    const std::vector<timemodel::FrameFeatures>& options = mOptions[variable];
+    return clampMs(mEstimator(before + (options[std::size_t(to)] - options[std::size_t(from)])));
+}
+
 double TimeModelCost::deltaMs(const optimizer::Combination& combination, int variable, int newLevel) const {
     const timemodel::FrameFeatures before = featuresOf(combination);
-    const std::vector<timemodel::FrameFeatures>& options = mOptions[std::size_t(variable)];
-    const timemodel::FrameFeatures after =
-        before + (options[std::size_t(newLevel)] - options[std::size_t(combination[std::size_t(variable)])]);
-    return clampMs(mEstimator(after)) - clampMs(mEstimator(before));
+    const auto v = std::size_t(variable);
+    return stepMs(before, v, combination[v], newLevel) - clampMs(mEstimator(before));
 }
 
 void TimeModelCost::deltasMs(const optimizer::Combination& combination, std::span<const int> newLevels,
@@ -62,10 +65,7 @@ void TimeModelCost::deltasMs(const optimizer::Combination& combination, std::spa
             deltas[v] = 0.0;
             continue;
         }
-        const std::vector<timemodel::FrameFeatures>& options = mOptions[v];
-        const timemodel::FrameFeatures after =
-            before + (options[std::size_t(newLevels[v])] - options[std::size_t(combination[v])]);
-        deltas[v] = clampMs(mEstimator(after)) - beforeMs;
+        deltas[v] = stepMs(before, v, combination[v], newLevels[v]) - beforeMs;
     }
 }
 

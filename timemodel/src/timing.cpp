@@ -8,15 +8,13 @@
 #include "timemodel/profile.hpp"
 
 namespace lodopt::timemodel {
-namespace {
 
 double median(std::vector<double> values) {
+    if (values.empty()) return NAN;
     std::sort(values.begin(), values.end());
     const std::size_t n = values.size();
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
-
-}  // namespace
 
 const std::vector<double>& perPassValues(const std::string& clock, const PassTimes& times) {
     if (clock == "cpu") return times.medianCpu;

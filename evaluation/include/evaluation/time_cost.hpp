@@ -39,6 +39,8 @@ public:
 
 private:
     timemodel::FrameFeatures featuresOf(const optimizer::Combination& combination) const;
+    // The prediction after `variable` moves from option `from` to `to` in a frame of `before`.
+    double stepMs(const timemodel::FrameFeatures& before, std::size_t variable, int from, int to) const;
 
     timemodel::FeatureTable mTable;
     FrameTimeEstimator mEstimator;

@@ -30,6 +30,11 @@ struct PassTimes {
     std::vector<double> medianCpu;   // each pass's median process CPU time
 };
 
+// The middle value, the mean of the two middle ones for an even count; NaN for an empty list
+// (JSON null), so that a missing median never reads as a measured 0. The one median of timings
+// and of the reports' columns (calibration, the scheduler's walk, the CLI's tables).
+double median(std::vector<double> values);
+
 // The per-pass values `clock` (one of timingClockNames()) reduces: leastWall for wall-min and
 // wall-min-median, medianWall for wall-median, medianCpu for cpu.
 const std::vector<double>& perPassValues(const std::string& clock, const PassTimes& times);
