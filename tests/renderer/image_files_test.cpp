@@ -185,6 +185,12 @@ TEST_F(ImageFilesTest, ForeignTruncatedOrHostileFilesAreRefusedByName) {
     const std::string png = slurp(path("whole.png")), jpeg = slurp(path("whole.jpg"));
     std::ofstream(path("cut.png"), std::ios::binary) << png.substr(0, png.size() / 2);
     std::ofstream(path("cut.jpg"), std::ios::binary) << jpeg.substr(0, jpeg.size() / 2);
+    // The image data ends early at a marker (here the end-of-image one): libjpeg would fill the
+    // rest with gray, as it would the rest of a 16384 x 16384 image a few bytes long.
+    // (128 x 128, so that half the file lies in the image data, past the tables.)
+    renderer::writeColorImage(path("large.jpg"), testFrame(128, 128));
+    const std::string large = slurp(path("large.jpg"));
+    std::ofstream(path("early.jpg"), std::ios::binary) << large.substr(0, large.size() / 2) << "\xFF\xD9";
     std::ofstream(path("image.tga"), std::ios::binary) << std::string("\0\0\2\0\0\0\0\0\0\0\0\0\1\0\1\0\x18\0\1\2\3", 21);
     std::ofstream(path("short.ppm"), std::ios::binary) << "P6\n4000 4000\n255\n" << std::string(10, 'x');
     std::ofstream(path("maximum.pgm"), std::ios::binary) << "P5 1 1 70000 " << std::string(2, 'x');
@@ -193,7 +199,7 @@ TEST_F(ImageFilesTest, ForeignTruncatedOrHostileFilesAreRefusedByName) {
                                   0x01, 0x11, 0x00, 0xFF, 0xD9};
     std::ofstream(path("huge.jpg"), std::ios::binary).write(reinterpret_cast<const char*>(huge), sizeof huge);
     fs::create_directories(mDir / "folder.png");
-    for (const char* name : {"cut.png", "cut.jpg", "image.tga", "short.ppm", "maximum.pgm", "huge.jpg", "folder.png",
+    for (const char* name : {"cut.png", "cut.jpg", "early.jpg", "image.tga", "short.ppm", "maximum.pgm", "huge.jpg", "folder.png",
                              "missing.png"}) {
         try {
             renderer::readImage(path(name));
