@@ -9,9 +9,8 @@
 namespace lodopt::cli {
 namespace {
 
-
 // JSON writes NaN (and infinities, which no field holds) as null: numberOrNaN reads it back.
-nlohmann::json toJson(const AlgorithmRun& run) {
+nlohmann::json toJson(const evaluation::AlgorithmRun& run) {
     return {{"algorithm", run.algorithm},
             {"evaluation_budget", run.evaluationBudget},
             {"seed", run.seed},
@@ -21,8 +20,8 @@ nlohmann::json toJson(const AlgorithmRun& run) {
             {"evaluations", run.evaluations}};
 }
 
-AlgorithmRun runFromJson(const nlohmann::json& saved) {
-    AlgorithmRun run;
+evaluation::AlgorithmRun runFromJson(const nlohmann::json& saved) {
+    evaluation::AlgorithmRun run;
     run.algorithm = saved.at("algorithm").get<std::string>();
     run.evaluationBudget = saved.at("evaluation_budget").get<std::int64_t>();
     run.seed = saved.at("seed").get<std::uint64_t>();
@@ -33,7 +32,7 @@ AlgorithmRun runFromJson(const nlohmann::json& saved) {
     return run;
 }
 
-nlohmann::json toJson(const BestKnown& best) {
+nlohmann::json toJson(const evaluation::BestKnown& best) {
     return {{"fitness", best.fitness},
             {"source", best.source},
             {"combinations", best.combinations},
@@ -41,8 +40,8 @@ nlohmann::json toJson(const BestKnown& best) {
             {"seconds", best.seconds}};
 }
 
-BestKnown bestFromJson(const nlohmann::json& saved) {
-    BestKnown best;
+evaluation::BestKnown bestFromJson(const nlohmann::json& saved) {
+    evaluation::BestKnown best;
     best.fitness = numberOrNaN(saved.at("fitness"));
     best.source = saved.at("source").get<std::string>();
     best.combinations = numberOrNaN(saved.at("combinations"));
@@ -51,7 +50,7 @@ BestKnown bestFromJson(const nlohmann::json& saved) {
     return best;
 }
 
-nlohmann::json toJson(const EvalPathRow& row) {
+nlohmann::json toJson(const evaluation::EvalPathRow& row) {
     return {{"path", row.path},
             {"workload", row.workload},
             {"mode", row.mode},
@@ -63,8 +62,8 @@ nlohmann::json toJson(const EvalPathRow& row) {
             {"max_abs_fitness_diff", row.maxAbsFitnessDiff}};
 }
 
-EvalPathRow pathFromJson(const nlohmann::json& saved) {
-    EvalPathRow row;
+evaluation::EvalPathRow pathFromJson(const nlohmann::json& saved) {
+    evaluation::EvalPathRow row;
     row.path = saved.at("path").get<std::string>();
     row.workload = saved.at("workload").get<std::string>();
     row.mode = saved.at("mode").get<std::string>();
@@ -77,7 +76,7 @@ EvalPathRow pathFromJson(const nlohmann::json& saved) {
     return row;
 }
 
-nlohmann::json toJson(const MetricsRow& row) {
+nlohmann::json toJson(const evaluation::MetricsRow& row) {
     return {{"function", row.function},
             {"width", row.width},
             {"height", row.height},
@@ -88,8 +87,8 @@ nlohmann::json toJson(const MetricsRow& row) {
             {"abs_deviation", row.absDeviation}};
 }
 
-MetricsRow metricsFromJson(const nlohmann::json& saved) {
-    MetricsRow row;
+evaluation::MetricsRow metricsFromJson(const nlohmann::json& saved) {
+    evaluation::MetricsRow row;
     row.function = saved.at("function").get<std::string>();
     row.width = saved.at("width").get<int>();
     row.height = saved.at("height").get<int>();
@@ -101,13 +100,13 @@ MetricsRow metricsFromJson(const nlohmann::json& saved) {
     return row;
 }
 
-nlohmann::json toJson(const TimeModelRow& row) {
+nlohmann::json toJson(const evaluation::TimeModelRow& row) {
     return {{"model", row.model},   {"source", row.source}, {"samples", row.samples}, {"mean", row.mean},
             {"median", row.median}, {"p90", row.p90},       {"max", row.max}};
 }
 
-TimeModelRow timeModelFromJson(const nlohmann::json& saved) {
-    TimeModelRow row;
+evaluation::TimeModelRow timeModelFromJson(const nlohmann::json& saved) {
+    evaluation::TimeModelRow row;
     row.model = saved.at("model").get<std::string>();
     row.source = saved.at("source").get<std::string>();
     row.samples = saved.at("samples").get<std::size_t>();
@@ -131,7 +130,6 @@ auto rowsOf(const nlohmann::json& array, Read read) {
     for (const nlohmann::json& item : array) rows.push_back(read(item));
     return rows;
 }
-
 
 }  // namespace
 

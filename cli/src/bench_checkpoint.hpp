@@ -10,22 +10,23 @@
 #include <string>
 #include <vector>
 
-#include "bench_run.hpp"
+#include "evaluation/benchmark.hpp"
 
 namespace lodopt::cli {
 
 inline constexpr const char* kBenchCheckpoint = "bench.checkpoint.json";
 
 struct TimeModelSection {
-    std::vector<TimeModelRow> rows;
+    std::vector<evaluation::TimeModelRow> rows;
     std::vector<std::string> warnings;  // the profile's mismatch sentences
 };
 
 struct BenchCheckpoint {
-    std::vector<AlgorithmRun> runs;      // finished grid runs, in the order they finished
-    std::optional<BestKnown> bestKnown;  // searchBestKnown's answer, before applyBestKnown
-    std::optional<std::vector<EvalPathRow>> evalPaths;
-    std::optional<std::vector<MetricsRow>> metrics;
+    std::vector<evaluation::AlgorithmRun> runs;  // finished grid runs, in the order they finished
+    std::optional<evaluation::BestKnown>
+        bestKnown;  // evaluation::searchBestKnown's answer, before evaluation::applyBestKnown
+    std::optional<std::vector<evaluation::EvalPathRow>> evalPaths;
+    std::optional<std::vector<evaluation::MetricsRow>> metrics;
     std::optional<TimeModelSection> timeModels;
 };
 

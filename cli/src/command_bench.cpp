@@ -1,6 +1,6 @@
 // lodopt bench: run time against error in one run (issue #8): algorithms × evaluation budgets
 // (wall time and gap to the best fitness known), fast vs full evaluation path, metrics against
-// float64 references, and the time models' error. The measurements are in bench_run.hpp; this
+// float64 references, and the time models' error. The measurements are evaluation/benchmark.hpp's; this
 // file parses options, writes the CSVs, bench.json and the Pareto plot, and prints a summary.
 //
 // Each grid run and each later section is one unit of work: after it, every finished unit is
@@ -17,17 +17,18 @@
 #include <sstream>
 
 #include "bench_checkpoint.hpp"
-#include "bench_run.hpp"
 #include "checkpoint.hpp"
 #include "cli_common.hpp"
+#include "evaluation/benchmark.hpp"
 #include "interrupt.hpp"
+#include "optimize_run.hpp"
 #include "optimizer/checked_evaluator.hpp"
 #include "optimizer/mckp.hpp"
 #include "progress.hpp"
 #include "report_bench.hpp"
-#include "statistics.hpp"
 #include "scenes/atomic_file.hpp"
 #include "scenes/builtin.hpp"
+#include "statistics.hpp"
 
 namespace lodopt::cli {
 namespace {
@@ -131,11 +132,11 @@ std::pair<std::size_t, std::size_t> unitCounts(const BenchOptions& bench, const 
                                                const BenchCheckpoint& checkpoint) {
     std::size_t gridRuns = 0, done = 0;
     for (const std::string& name : grid.algorithms) {
-        const int runsHere = isStochastic(name) ? bench.seeds : 1;
+        const int runsHere = evaluation::isStochastic(name) ? bench.seeds : 1;
         gridRuns += grid.budgets.size() * std::size_t(runsHere);
         for (std::int64_t budget : grid.budgets) {
             for (int seed = 1; seed <= runsHere; ++seed) {
-                done += findRun(checkpoint.runs, name, budget, std::uint64_t(seed)) ? 1 : 0;
+                done += evaluation::findRun(checkpoint.runs, name, budget, std::uint64_t(seed)) ? 1 : 0;
             }
         }
     }
@@ -155,11 +156,21 @@ std::pair<std::int64_t, double> measureSurrogateTable(const evaluation::SearchVi
             std::chrono::duration<double>(std::chrono::steady_clock::now() - tableStart).count()};
 }
 
+// The profile the time-model check reads: the named file, else the scene's shipped one.
+timemodel::DeviceProfile benchProfile(const PreparedScene& prepared, const std::string& file) {
+    try {
+        return file.empty() ? timemodel::shippedProfile(prepared.scene.name) : timemodel::loadProfile(file);
+    } catch (const timemodel::TimeModelError& error) {
+        throw UsageError(error.what());
+    }
+}
+
 // Every unit not yet in `checkpoint`, each saved when done; an interrupt stops after a unit.
-std::vector<AlgorithmRun> runUnits(const BenchOptions& bench, const BenchGrid& grid, const OptimizeOptions& options,
-                                   PreparedScene& prepared, const evaluation::SearchView& context,
-                                   const CheckpointFile& checkpointFile, const nlohmann::json& identity,
-                                   BenchCheckpoint& checkpoint) {
+std::vector<evaluation::AlgorithmRun> runUnits(const BenchOptions& bench, const BenchGrid& grid,
+                                               const OptimizeOptions& options, PreparedScene& prepared,
+                                               const evaluation::SearchView& context,
+                                               const CheckpointFile& checkpointFile, const nlohmann::json& identity,
+                                               BenchCheckpoint& checkpoint) {
     auto [total, done] = unitCounts(bench, grid, checkpoint);
     if (done < total) pollInterrupt("bench", done, total, "unit", checkpointFile.path());
     Progress progress("bench", total - done, bench.output.quiet);
@@ -175,29 +186,36 @@ std::vector<AlgorithmRun> runUnits(const BenchOptions& bench, const BenchGrid& g
             throw;
         }
     };
-    auto onNewRun = [&](const AlgorithmRun& run) {
+    auto onNewRun = [&](const evaluation::AlgorithmRun& run) {
         checkpoint.runs.push_back(run);
         unitDone(run.algorithm + " " + std::to_string(run.evaluationBudget) + " evals seed " +
                  std::to_string(run.seed));
     };
-    std::vector<AlgorithmRun> runs =
-        runAlgorithmGrid(context, options, grid.algorithms, grid.budgets, bench.seeds, checkpoint.runs, onNewRun);
+    std::vector<evaluation::AlgorithmRun> runs =
+        evaluation::runAlgorithmGrid(context, searchOptions(options, options.algorithm, options.seed), grid.algorithms,
+                                     grid.budgets, bench.seeds, checkpoint.runs, onNewRun);
     if (!checkpoint.bestKnown) {
-        checkpoint.bestKnown = searchBestKnown(context, options, bench.exhaustiveLimit);
+        checkpoint.bestKnown = evaluation::searchBestKnown(context, bench.exhaustiveLimit);
         unitDone("best known (" + checkpoint.bestKnown->source + ")");
     }
     if (!checkpoint.evalPaths) {
-        checkpoint.evalPaths = measureEvalPaths(prepared, context, options, bench.candidates, options.seed);
+        checkpoint.evalPaths = evaluation::measureEvaluationPaths(context, *prepared.renderer, prepared.metrics,
+                                                                  options.threads, bench.candidates, options.seed);
         unitDone("evaluation paths");
     }
     if (!checkpoint.metrics) {
-        checkpoint.metrics = measureMetrics(prepared, context, bench.metricsSeconds);
+        checkpoint.metrics =
+            evaluation::measureMetrics(context, *prepared.renderer, prepared.metrics, bench.metricsSeconds);
         unitDone("metrics");
     }
     if (!checkpoint.timeModels) {
         TimeModelSection section;
-        section.rows = measureTimeModels(prepared, context, options, bench.timingFrames, bench.timingRepeats,
-                                         options.seed, section.warnings);
+        const timemodel::DeviceProfile profile = benchProfile(prepared, options.profile);
+        section.warnings = timemodel::profileWarnings(
+            profile, prepared.renderer->glRendererString(), prepared.settings.width, prepared.settings.height,
+            timemodel::describeMachine(), renderer::shadingName(prepared.settings.shading));
+        section.rows = evaluation::measureTimeModels(context, *prepared.renderer, profile, bench.timingFrames,
+                                                     bench.timingRepeats, options.seed);
         checkpoint.timeModels = std::move(section);
         unitDone("time models");
     }
@@ -210,12 +228,12 @@ struct BenchTables {
     nlohmann::json algorithms, paths, metrics, timeModels;
 };
 
-nlohmann::json algorithmTable(const BenchGrid& grid, const std::vector<AlgorithmRun>& runs,
+nlohmann::json algorithmTable(const BenchGrid& grid, const std::vector<evaluation::AlgorithmRun>& runs,
                               const std::filesystem::path& dir) {
     // Per (algorithm, budget): medians over seeds.
     std::ostringstream runsCsv, algorithmsCsv;
     runsCsv << "algorithm,evaluation_budget,seed,wall_seconds,fitness,gap,evaluations,predicted_ms\n";
-    for (const AlgorithmRun& run : runs) {
+    for (const evaluation::AlgorithmRun& run : runs) {
         runsCsv << run.algorithm << ',' << run.evaluationBudget << ',' << run.seed << ',' << number(run.wallSeconds)
                 << ',' << number(run.fitness) << ',' << number(run.gap) << ',' << run.evaluations << ','
                 << number(run.predictedMs) << '\n';
@@ -226,7 +244,7 @@ nlohmann::json algorithmTable(const BenchGrid& grid, const std::vector<Algorithm
     for (const std::string& name : grid.algorithms) {
         for (std::int64_t budget : grid.budgets) {
             std::vector<double> wall, gap, fitness, evaluations;
-            for (const AlgorithmRun& run : runs) {
+            for (const evaluation::AlgorithmRun& run : runs) {
                 if (run.algorithm != name || run.evaluationBudget != budget) continue;
                 wall.push_back(run.wallSeconds);
                 gap.push_back(run.gap);
@@ -254,7 +272,7 @@ nlohmann::json algorithmTable(const BenchGrid& grid, const std::vector<Algorithm
     return table;
 }
 
-BenchTables writeTables(const BenchGrid& grid, const std::vector<AlgorithmRun>& runs,
+BenchTables writeTables(const BenchGrid& grid, const std::vector<evaluation::AlgorithmRun>& runs,
                         const BenchCheckpoint& checkpoint, const std::filesystem::path& dir) {
     BenchTables tables;
     tables.algorithms = algorithmTable(grid, runs, dir);
@@ -262,7 +280,7 @@ BenchTables writeTables(const BenchGrid& grid, const std::vector<AlgorithmRun>& 
     pathsCsv << "path,workload,mode,threads,candidates,seconds,evals_per_second,mean_abs_fitness_diff,"
                 "max_abs_fitness_diff\n";
     tables.paths = nlohmann::json::array();
-    for (const EvalPathRow& row : *checkpoint.evalPaths) {
+    for (const evaluation::EvalPathRow& row : *checkpoint.evalPaths) {
         pathsCsv << row.path << ',' << row.workload << ',' << row.mode << ',' << row.threads << ',' << row.candidates
                  << ',' << number(row.seconds) << ',' << number(row.evaluationsPerSecond) << ','
                  << number(row.meanAbsFitnessDiff) << ',' << number(row.maxAbsFitnessDiff) << '\n';
@@ -278,7 +296,7 @@ BenchTables writeTables(const BenchGrid& grid, const std::vector<AlgorithmRun>& 
     metricsCsv << "function,width,height,calls,microseconds_per_call,reference,reference_microseconds_per_call,"
                   "abs_deviation\n";
     tables.metrics = nlohmann::json::array();
-    for (const MetricsRow& row : *checkpoint.metrics) {
+    for (const evaluation::MetricsRow& row : *checkpoint.metrics) {
         metricsCsv << '"' << row.function << "\"," << row.width << ',' << row.height << ',' << row.calls << ','
                    << number(row.microsecondsPerCall) << ",\"" << row.reference << "\","
                    << number(row.referenceMicrosecondsPerCall) << ',' << number(row.absDeviation) << '\n';
@@ -291,7 +309,7 @@ BenchTables writeTables(const BenchGrid& grid, const std::vector<AlgorithmRun>& 
     }
     timeCsv << "model,source,samples,mean_error,median_error,p90_error,max_error\n";
     tables.timeModels = nlohmann::json::array();
-    for (const TimeModelRow& row : checkpoint.timeModels->rows) {
+    for (const evaluation::TimeModelRow& row : checkpoint.timeModels->rows) {
         timeCsv << row.model << ",\"" << row.source << "\"," << row.samples << ',' << number(row.mean) << ','
                 << number(row.median) << ',' << number(row.p90) << ',' << number(row.max) << '\n';
         tables.timeModels.push_back({{"model", row.model},
@@ -327,7 +345,7 @@ void printBench(const nlohmann::json& document, const BenchCheckpoint& checkpoin
     const nlohmann::json& table = document["surrogate_table"];
     std::cout << "  (mckp's per-view table, not in its wall time: " << table["evaluations"].get<std::int64_t>()
               << " evaluations, " << std::setprecision(3) << table["seconds"].get<double>() << " s)\n";
-    for (const EvalPathRow& row : *checkpoint.evalPaths) {
+    for (const evaluation::EvalPathRow& row : *checkpoint.evalPaths) {
         if (row.workload != "random") continue;
         std::cout << "  " << row.path << " path (" << row.mode << ", " << row.threads << " thread"
                   << (row.threads > 1 ? "s" : "") << "): " << std::setprecision(4) << row.evaluationsPerSecond
@@ -336,13 +354,13 @@ void printBench(const nlohmann::json& document, const BenchCheckpoint& checkpoin
             std::cout << ", max |fast - full| " << std::setprecision(3) << row.maxAbsFitnessDiff;
         std::cout << "\n";
     }
-    for (const MetricsRow& row : *checkpoint.metrics) {
+    for (const evaluation::MetricsRow& row : *checkpoint.metrics) {
         std::cout << "  " << std::left << std::setw(30) << row.function << std::right << std::setw(10)
                   << std::setprecision(4) << row.microsecondsPerCall << " us/call";
         if (std::isfinite(row.absDeviation)) std::cout << ", |deviation| " << std::setprecision(3) << row.absDeviation;
         std::cout << "\n";
     }
-    for (const TimeModelRow& row : checkpoint.timeModels->rows) {
+    for (const evaluation::TimeModelRow& row : checkpoint.timeModels->rows) {
         std::cout << "  time model " << std::left << std::setw(7) << row.model << std::right << " " << row.source
                   << ": mean error " << std::setprecision(3) << 100.0 * row.mean << "% (" << row.samples
                   << " frames)\n";
@@ -374,10 +392,10 @@ void runBench(const BenchOptions& bench) {
         context.problem.budgetMs = options.budgetMs;
     }
     const auto [tableEvaluations, tableSeconds] = measureSurrogateTable(context);
-    std::vector<AlgorithmRun> runs =
+    std::vector<evaluation::AlgorithmRun> runs =
         runUnits(bench, grid, options, prepared, context, checkpointFile, identity, checkpoint);
-    BestKnown best = *checkpoint.bestKnown;
-    applyBestKnown(best, runs);
+    evaluation::BestKnown best = *checkpoint.bestKnown;
+    evaluation::applyBestKnown(best, runs);
 
     const BenchTables tables = writeTables(grid, runs, checkpoint, dir);
     const Plotter plotter(dir.string());
@@ -446,7 +464,8 @@ void addBenchCommand(CLI::App& app) {
     command->add_option("--threads", o.threads, "Evaluation threads (default: all cores)")->check(CLI::Range(1, 256));
     addWeightsOption(*command, o.weights);
     addProfileOptions(*command, o.profile, o.model);
-    command->add_option("--seed", o.seed, "Seed of the sampled candidates and time-model frames")->capture_default_str();
+    command->add_option("--seed", o.seed, "Seed of the sampled candidates and time-model frames")
+        ->capture_default_str();
     addSceneSeedOption(*command, o.sceneSeed);
     command->add_option("--algos", bench->algorithms, "Comma-separated algorithms")->capture_default_str();
     command->add_option("--evals", bench->budgets, "Comma-separated evaluation budgets")->capture_default_str();

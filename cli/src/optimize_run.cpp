@@ -48,16 +48,23 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
     return prepared;
 }
 
-evaluation::SearchView prepareView(PreparedScene& prepared, int view, const OptimizeOptions& options) {
+namespace {
+
+evaluation::SearchViewSettings viewSettings(const OptimizeOptions& options) {
     evaluation::SearchViewSettings settings;
     settings.path = options.evalPath == "full" ? evaluation::EvaluationPath::Full : evaluation::EvaluationPath::Fast;
     settings.threads = options.threads;
     settings.states = options.evalStates;
     settings.budgetMs = options.budgetMs;
-    // The search scores fitness only; the answer's precision/recall come from runOptimizer's
-    // full render with prepared.metrics.
+    return settings;
+}
+
+}  // namespace
+
+evaluation::SearchView prepareView(PreparedScene& prepared, int view, const OptimizeOptions& options) {
     return evaluation::prepareSearchView(prepared.scene, prepared.scene.views[std::size_t(view)], *prepared.renderer,
-                                         prepared.metrics, prepared.estimator, prepared.readFeatures, settings);
+                                         prepared.metrics, prepared.estimator, prepared.readFeatures,
+                                         viewSettings(options));
 }
 
 std::vector<std::string> seedAlgorithms(const std::string& seedFrom) {
@@ -157,15 +164,13 @@ nlohmann::json skippedJson(const scenes::Scene& scene, const evaluation::ViewSet
     nlohmann::json skipped = nlohmann::json::object();
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const evaluation::ObjectSetup& object = setup.objects()[o];
-        if (object.skip != evaluation::SkipReason::None) skipped[scene.objects[o].name] = evaluation::toString(object.skip);
+        if (object.skip != evaluation::SkipReason::None)
+            skipped[scene.objects[o].name] = evaluation::toString(object.skip);
     }
     const evaluation::SkipSummary& skip = setup.skipSummary();
-    return {{"outside_frustum", skip.outsideFrustum},
-            {"below_one_pixel", skip.belowOnePixel},
-            {"hidden", skip.hidden},
-            {"merged_levels", skip.mergedLevels},
-            {"searched_objects", skip.searchedObjects},
-            {"objects", skipped}};
+    return {
+        {"outside_frustum", skip.outsideFrustum}, {"below_one_pixel", skip.belowOnePixel},    {"hidden", skip.hidden},
+        {"merged_levels", skip.mergedLevels},     {"searched_objects", skip.searchedObjects}, {"objects", skipped}};
 }
 
 nlohmann::json entropyJson(const metrics::EntropyComponent& c) {
@@ -174,48 +179,37 @@ nlohmann::json entropyJson(const metrics::EntropyComponent& c) {
 
 }  // namespace
 
-ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& options,
-                     const std::string& algorithm, std::uint64_t seed) {
-    const auto start = std::chrono::steady_clock::now();
-    evaluation::SearchView context = prepareView(prepared, view, options);
-    const double setupSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const auto searchStart = std::chrono::steady_clock::now();
-    optimizer::Result result = runAlgorithm(context, options, algorithm, seed);
-    const double searchSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - searchStart).count();
-
-    const evaluation::ViewSetup& setup = *context.setup;
+ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& options, const std::string& algorithm,
+                     std::uint64_t seed) {
+    evaluation::ViewAnswer answer = evaluation::optimizeView(
+        prepared.scene, prepared.scene.views[std::size_t(view)], *prepared.renderer, prepared.metrics,
+        prepared.estimator, prepared.readFeatures, viewSettings(options), searchOptions(options, algorithm, seed));
+    const evaluation::ViewSetup& setup = *answer.view.setup;
     const scenes::Scene& scene = prepared.scene;
-    const scenes::Combination levels = setup.toScene(result.best);
-
-    // Full metrics (raw entropies too) of the answer, and its image, through a full render so
-    // the reported figures never rest on the layer approximation alone.
-    evaluation::FullRenderEvaluator full(setup, *prepared.renderer, prepared.metrics);
-    const metrics::MetricResult answer = full.metricsOf(result.best);
+    const optimizer::Result& result = answer.result;
+    const metrics::MetricResult& full = answer.metrics;
+    const double searchSeconds = answer.searchSeconds;
     ViewRun run;
-    run.optimizedImage = prepared.renderer->render(levels, setup.camera());
-
     run.json = {
         {"scene", scene.name},
         {"view", setup.camera().name},
         {"algorithm", algorithm},
-        {"seeded_from",
-         optimizer::isSwarmAlgorithm(algorithm) ? nlohmann::json(seedAlgorithms(options.seedFrom)) : nlohmann::json::array()},
+        {"seeded_from", optimizer::isSwarmAlgorithm(algorithm) ? nlohmann::json(seedAlgorithms(options.seedFrom))
+                                                               : nlohmann::json::array()},
         {"seed", seed},
         {"scene_seed", options.sceneSeed},
-        {"fill_probability",
-         optimizer::isSwarmAlgorithm(algorithm) ? nlohmann::json(effectiveFillProbability(options)) : nlohmann::json(nullptr)},
+        {"fill_probability", optimizer::isSwarmAlgorithm(algorithm) ? nlohmann::json(effectiveFillProbability(options))
+                                                                    : nlohmann::json(nullptr)},
         {"eval_path", options.evalPath},
-        {"levels", levelsByName(scene, levels)},
-        {"combination", levels},
-        {"fitness", answer.fitness},
+        {"levels", levelsByName(scene, answer.levels)},
+        {"combination", answer.levels},
+        {"fitness", full.fitness},
         {"search_fitness", result.bestScore.fitness},
-        {"ssim", {{"computed", answer.ssimComputed}, {"value", answer.ssim}, {"fidelity", answer.ssimFidelity}}},
-        {"boundary_entropy", entropyJson(answer.boundaryEntropy)},
-        {"information_entropy", entropyJson(answer.informationEntropy)},
-        {"precision", answer.precision},
-        {"recall", answer.recall},
+        {"ssim", {{"computed", full.ssimComputed}, {"value", full.ssim}, {"fidelity", full.ssimFidelity}}},
+        {"boundary_entropy", entropyJson(full.boundaryEntropy)},
+        {"information_entropy", entropyJson(full.informationEntropy)},
+        {"precision", full.precision},
+        {"recall", full.recall},
         {"predicted_ms", result.predictedMs},
         {"budget_ms", options.budgetMs},
         {"time_model", prepared.timeModelName},
@@ -224,18 +218,19 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
         {"iterations", result.iterations},
         {"stop_reason", std::string(optimizer::toString(result.stopReason))},
         {"skipped_objects", skippedJson(scene, setup)},
-        {"owned_windows", ownedWindowsJson(context.evaluator.get())},
-        {"window_groups", windowGroupsJson(context.evaluator.get())},
-        {"setup_seconds", setupSeconds},
+        {"owned_windows", ownedWindowsJson(answer.view.evaluator.get())},
+        {"window_groups", windowGroupsJson(answer.view.evaluator.get())},
+        {"setup_seconds", answer.setupSeconds},
         {"evals_per_second", searchSeconds > 0.0 ? double(result.evaluations) / searchSeconds : 0.0},
         {"search_seconds", searchSeconds},
-        {"wall_seconds", setupSeconds + searchSeconds},
+        {"wall_seconds", answer.setupSeconds + searchSeconds},
         {"width", setup.width()},
         {"height", setup.height()},
         {"shading", options.shading},
     };
-    run.setup = std::move(context.setup);
-    run.result = std::move(result);
+    run.optimizedImage = std::move(answer.image);
+    run.setup = std::move(answer.view.setup);
+    run.result = std::move(answer.result);
     return run;
 }
 

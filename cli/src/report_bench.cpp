@@ -196,23 +196,10 @@ void addBenchSection(ReportContext& context, const fs::path& folder) {
     }
 }
 
-void addProfileSection(ReportContext& context, const fs::path& file) {
-    std::ifstream stream(file, std::ios::binary);
-    std::stringstream text;
-    text << stream.rdbuf();
-    timemodel::DeviceProfile profile;
-    try {
-        profile = timemodel::profileFromJson(text.str(), file.string());
-    } catch (const timemodel::TimeModelError& error) {
-        throw UsageError(error.what());
-    }
-    context.html.heading(2, "calibrate: " + profile.scene + " (" + file.filename().string() + ")");
-    context.html.paragraph(
-        std::to_string(profile.width) + "x" + std::to_string(profile.height) + " on " + profile.glRenderer + ", " +
-        profile.machine.cpuModel + " (" + std::to_string(profile.machine.cores) + " threads), " + profile.created +
-        "; " + std::to_string(profile.samples.size()) + " samples from " + std::to_string(profile.viewpoints) +
-        " viewpoints (" + std::to_string(profile.heldOutViewpoints) + " held out), clock " + profile.timing.clock +
-        ", default model " + profile.defaultModel + ".");
+namespace {
+
+// The models' error table and bars.
+void addProfileErrors(ReportContext& context, const timemodel::DeviceProfile& profile) {
     std::vector<std::vector<std::string>> rows;
     std::ostringstream errors;
     errors << "# model held_out_mean held_out_median held_out_p90 fit_mean (percent)\n";
@@ -245,8 +232,10 @@ void addProfileSection(ReportContext& context, const fs::path& file) {
         "' title 'held-out p90', '' using 5 lc rgb '" + seriesColor(5) + "' title 'fit mean'\n";
     bars.height = 360;
     context.plot(bars, "Held-out samples come from viewpoints that were never fitted.");
-    if (profile.samples.empty()) return;
-    // Predicted against measured per sample and model.
+}
+
+// Predicted against measured time per sample and model.
+void addProfileScatter(ReportContext& context, const timemodel::DeviceProfile& profile) {
     const std::string scatterName = context.prefix + "profile_scatter";
     std::ostringstream scatter, plots;
     scatter << "# per model (one index block each): measured ms, predicted ms, held out (1/0)\n";
@@ -282,6 +271,29 @@ void addProfileSection(ReportContext& context, const fs::path& file) {
     spec.width = 760;
     spec.height = 520;
     context.plot(spec, "Every calibration sample; points on the diagonal are predicted exactly.");
+}
+
+}  // namespace
+
+void addProfileSection(ReportContext& context, const fs::path& file) {
+    std::ifstream stream(file, std::ios::binary);
+    std::stringstream text;
+    text << stream.rdbuf();
+    timemodel::DeviceProfile profile;
+    try {
+        profile = timemodel::profileFromJson(text.str(), file.string());
+    } catch (const timemodel::TimeModelError& error) {
+        throw UsageError(error.what());
+    }
+    context.html.heading(2, "calibrate: " + profile.scene + " (" + file.filename().string() + ")");
+    context.html.paragraph(
+        std::to_string(profile.width) + "x" + std::to_string(profile.height) + " on " + profile.glRenderer + ", " +
+        profile.machine.cpuModel + " (" + std::to_string(profile.machine.cores) + " threads), " + profile.created +
+        "; " + std::to_string(profile.samples.size()) + " samples from " + std::to_string(profile.viewpoints) +
+        " viewpoints (" + std::to_string(profile.heldOutViewpoints) + " held out), clock " + profile.timing.clock +
+        ", default model " + profile.defaultModel + ".");
+    addProfileErrors(context, profile);
+    if (!profile.samples.empty()) addProfileScatter(context, profile);
 }
 
 }  // namespace lodopt::cli

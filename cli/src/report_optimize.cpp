@@ -242,10 +242,10 @@ void addImages(ReportContext& context, const fs::path& folder, const nlohmann::j
     context.html.images({ssimImage, differenceImage});
 }
 
-void addLevels(ReportContext& context, const nlohmann::json& result, const SceneFacts& facts, const Baseline& baseline,
-               const std::string& baselineName) {
-    std::vector<std::string> names;
-    std::vector<int> chosen;
+// The result's object names and chosen levels (-1 where a level is not an integer): from
+// "combination" when it names every object of the scene, else from "levels".
+void chosenLevels(const nlohmann::json& result, const SceneFacts& facts, std::vector<std::string>& names,
+                  std::vector<int>& chosen) {
     if (result.contains("combination") && result["combination"].is_array() &&
         result["combination"].size() == facts.names.size()) {
         names = facts.names;
@@ -257,30 +257,15 @@ void addLevels(ReportContext& context, const nlohmann::json& result, const Scene
             chosen.push_back(it.value().is_number_integer() ? it.value().get<int>() : -1);
         }
     }
-    if (names.empty()) return;
-    const bool withBaseline = baseline.levels.size() == names.size();
-    const bool withCounts = facts.levelCounts.size() == names.size();
-    context.html.heading(3, "Chosen levels per object");
-    std::vector<std::vector<std::string>> rows;
-    std::ostringstream data;
-    data << "# object index, name, optimized level, " << (withBaseline ? baselineName : "-") << " level, levels\n";
-    int maxLevel = 0;
-    for (std::size_t o = 0; o < names.size(); ++o) {
-        const int levels = withCounts ? facts.levelCounts[o] : 0;
-        std::vector<std::string> row = {names[o], std::to_string(chosen[o])};
-        if (withBaseline) row.push_back(std::to_string(baseline.levels[o]));
-        if (withCounts) row.push_back(std::to_string(levels));
-        rows.push_back(row);
-        maxLevel = std::max({maxLevel, chosen[o], withBaseline ? baseline.levels[o] : 0, levels - 1});
-        data << o << ' ' << gnuplotDataField(names[o]) << ' ' << chosen[o] << ' '
-             << (withBaseline ? std::to_string(baseline.levels[o]) : "NaN") << ' ' << (withCounts ? levels : 0) << '\n';
-    }
-    std::vector<std::string> header = {"object", "optimized level"};
-    if (withBaseline) header.push_back(baselineName + " level");
-    if (withCounts) header.push_back("levels available");
+}
+
+// The chosen levels drawn per object (few objects) or as objects per level (many).
+void plotLevels(ReportContext& context, const std::vector<std::string>& names, const std::vector<int>& chosen,
+                const Baseline& baseline, const std::string& baselineName, bool withBaseline, int maxLevel,
+                const std::string& data) {
     PlotSpec spec;
     spec.name = context.prefix + "levels";
-    spec.data = {{spec.name + ".dat", data.str()}};
+    spec.data = {{spec.name + ".dat", data}};
     std::ostringstream script;
     if (names.size() <= kLevelsPlottedPerObject) {
         spec.title = "Chosen level per object (0 = finest)";
@@ -318,6 +303,35 @@ void addLevels(ReportContext& context, const nlohmann::json& result, const Scene
     spec.script = script.str();
     context.plot(spec, "Levels chosen by the optimizer" + std::string(withBaseline ? " and by " + baselineName : "") +
                            ". Data: " + spec.name + ".dat");
+}
+
+void addLevels(ReportContext& context, const nlohmann::json& result, const SceneFacts& facts, const Baseline& baseline,
+               const std::string& baselineName) {
+    std::vector<std::string> names;
+    std::vector<int> chosen;
+    chosenLevels(result, facts, names, chosen);
+    if (names.empty()) return;
+    const bool withBaseline = baseline.levels.size() == names.size();
+    const bool withCounts = facts.levelCounts.size() == names.size();
+    context.html.heading(3, "Chosen levels per object");
+    std::vector<std::vector<std::string>> rows;
+    std::ostringstream data;
+    data << "# object index, name, optimized level, " << (withBaseline ? baselineName : "-") << " level, levels\n";
+    int maxLevel = 0;
+    for (std::size_t o = 0; o < names.size(); ++o) {
+        const int levels = withCounts ? facts.levelCounts[o] : 0;
+        std::vector<std::string> row = {names[o], std::to_string(chosen[o])};
+        if (withBaseline) row.push_back(std::to_string(baseline.levels[o]));
+        if (withCounts) row.push_back(std::to_string(levels));
+        rows.push_back(row);
+        maxLevel = std::max({maxLevel, chosen[o], withBaseline ? baseline.levels[o] : 0, levels - 1});
+        data << o << ' ' << gnuplotDataField(names[o]) << ' ' << chosen[o] << ' '
+             << (withBaseline ? std::to_string(baseline.levels[o]) : "NaN") << ' ' << (withCounts ? levels : 0) << '\n';
+    }
+    std::vector<std::string> header = {"object", "optimized level"};
+    if (withBaseline) header.push_back(baselineName + " level");
+    if (withCounts) header.push_back("levels available");
+    plotLevels(context, names, chosen, baseline, baselineName, withBaseline, maxLevel, data.str());
     if (rows.size() <= 24) {
         context.html.table(header, rows);
     } else {

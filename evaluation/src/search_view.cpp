@@ -1,5 +1,7 @@
 #include "evaluation/search_view.hpp"
 
+#include <chrono>
+
 #include "optimizer/checked_evaluator.hpp"
 #include "optimizer/mckp.hpp"
 
@@ -28,6 +30,27 @@ SearchView prepareSearchView(const scenes::Scene& scene, const scenes::Camera& c
         view.problem.surrogateLoss = optimizer::measureSurrogateLoss(view.problem, checked);
     }
     return view;
+}
+
+ViewAnswer optimizeView(const scenes::Scene& scene, const scenes::Camera& camera, renderer::Renderer& renderer,
+                        const metrics::MetricParameters& metrics, const FrameTimeEstimator& estimator,
+                        const timemodel::FeatureSet& readFeatures, const SearchViewSettings& settings,
+                        const optimizer::SearchOptions& search) {
+    using Clock = std::chrono::steady_clock;
+    ViewAnswer answer;
+    const auto start = Clock::now();
+    answer.view = prepareSearchView(scene, camera, renderer, metrics, estimator, readFeatures, settings);
+    const auto searchStart = Clock::now();
+    answer.result = optimizer::runSearch(answer.view.problem, search);
+    answer.searchSeconds = std::chrono::duration<double>(Clock::now() - searchStart).count();
+    answer.setupSeconds = std::chrono::duration<double>(searchStart - start).count();
+
+    const ViewSetup& setup = *answer.view.setup;
+    answer.levels = setup.toScene(answer.result.best);
+    FullRenderEvaluator full(setup, renderer, metrics);
+    answer.metrics = full.metricsOf(answer.result.best);
+    answer.image = renderer.render(answer.levels, setup.camera());
+    return answer;
 }
 
 }  // namespace lodopt::evaluation

@@ -59,7 +59,6 @@ void expectInterruptMessage(const Exit& cut, int signal, const std::string& what
     EXPECT_NE(cut.err.find(" --resume"), std::string::npos) << cut.err;
 }
 
-
 class InterruptResume : public lodopt::cli_test::FolderWithFixedProfile {
 protected:
     InterruptResume() : FolderWithFixedProfile("lodopt-resume-") {}
@@ -300,12 +299,13 @@ TEST(BenchCheckpoint, DoublesRoundTripExactly) {
         written.runs.push_back(
             {"gapso", 30, i + 1, awkward[i], awkward[(i + 1) % 6], awkward[(i + 2) % 6], std::int64_t(i) * 7, 0.0});
     }
-    written.bestKnown = BestKnown{awkward[0], "exhaustive", 150.0, 103, awkward[1]};
-    written.evalPaths = std::vector<EvalPathRow>{{"full", "random", "single", 1, 4, awkward[2], awkward[3], NAN, NAN},
-                                                 {"fast", "walk", "batch", 2, 4, awkward[4], awkward[5], 1e-17, 0.0}};
-    MetricsRow ssim{"ssim", 64, 64, 12, awkward[1], "OpenCV", awkward[0], 1.67e-14};
-    MetricsRow recall{"precision_recall", 64, 64, 9, awkward[3], "", NAN, NAN};
-    written.metrics = std::vector<MetricsRow>{ssim, recall};
+    written.bestKnown = lodopt::evaluation::BestKnown{awkward[0], "exhaustive", 150.0, 103, awkward[1]};
+    written.evalPaths = std::vector<lodopt::evaluation::EvalPathRow>{
+        {"full", "random", "single", 1, 4, awkward[2], awkward[3], NAN, NAN},
+        {"fast", "walk", "batch", 2, 4, awkward[4], awkward[5], 1e-17, 0.0}};
+    lodopt::evaluation::MetricsRow ssim{"ssim", 64, 64, 12, awkward[1], "OpenCV", awkward[0], 1.67e-14};
+    lodopt::evaluation::MetricsRow recall{"precision_recall", 64, 64, 9, awkward[3], "", NAN, NAN};
+    written.metrics = std::vector<lodopt::evaluation::MetricsRow>{ssim, recall};
     written.timeModels = TimeModelSection{{{"linear", "this view, timed now", 2, awkward[0], awkward[1], NAN, 0.5}},
                                           {"the profile was measured at 128x128"}};
     const fs::path file =
@@ -314,8 +314,8 @@ TEST(BenchCheckpoint, DoublesRoundTripExactly) {
     const CheckpointFile checkpoint(file.string(), "bench", "units");
     checkpoint.save(identity, benchToCheckpoint(written));
     BenchCheckpoint read;
-    EXPECT_TRUE(
-        checkpoint.restore(true, true, identity, [&](const nlohmann::json& saved) { read = benchFromCheckpoint(saved); }));
+    EXPECT_TRUE(checkpoint.restore(true, true, identity,
+                                   [&](const nlohmann::json& saved) { read = benchFromCheckpoint(saved); }));
 
     auto same = [](double a, double b) {
         return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b));

@@ -10,6 +10,7 @@
 #include "evaluation/evaluation.hpp"
 #include "evaluation/time_cost.hpp"
 #include "optimizer/problem.hpp"
+#include "optimizer/search.hpp"
 
 namespace lodopt::evaluation {
 
@@ -17,9 +18,9 @@ enum class EvaluationPath { Fast, Full };
 
 struct SearchViewSettings {
     EvaluationPath path = EvaluationPath::Fast;
-    int threads = 1;                                      // fast path: evaluation threads, >= 1
-    int states = LayerEvaluator::kDefaultStates;          // fast path: evaluation states
-    double budgetMs = 0.0;                                // > 0
+    int threads = 1;                              // fast path: evaluation threads, >= 1
+    int states = LayerEvaluator::kDefaultStates;  // fast path: evaluation states
+    double budgetMs = 0.0;                        // > 0
 };
 
 struct SearchView {
@@ -34,5 +35,23 @@ struct SearchView {
 SearchView prepareSearchView(const scenes::Scene& scene, const scenes::Camera& camera, renderer::Renderer& renderer,
                              const metrics::MetricParameters& metrics, const FrameTimeEstimator& estimator,
                              const timemodel::FeatureSet& readFeatures, const SearchViewSettings& settings);
+
+// One view searched, as `lodopt optimize` does it: prepareSearchView, optimizer::runSearch, then
+// the answer's full metrics (raw entropies and precision/recall too, with the user's `metrics`)
+// and its image through a full render, so the reported figures never rest on the layer
+// approximation alone.
+struct ViewAnswer {
+    SearchView view;
+    optimizer::Result result;
+    scenes::Combination levels;     // the answer, one level per scene object
+    metrics::MetricResult metrics;  // of the answer's full render
+    renderer::Frame image;          // the answer's full render
+    double setupSeconds = 0.0;      // prepareSearchView's wall time
+    double searchSeconds = 0.0;     // runSearch's wall time
+};
+ViewAnswer optimizeView(const scenes::Scene& scene, const scenes::Camera& camera, renderer::Renderer& renderer,
+                        const metrics::MetricParameters& metrics, const FrameTimeEstimator& estimator,
+                        const timemodel::FeatureSet& readFeatures, const SearchViewSettings& settings,
+                        const optimizer::SearchOptions& search);
 
 }  // namespace lodopt::evaluation

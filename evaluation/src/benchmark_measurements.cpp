@@ -1,21 +1,16 @@
-#include "bench_run.hpp"
-
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <iostream>
 #include <random>
+#include <span>
 
-#include "cli_common.hpp"
+#include "evaluation/benchmark.hpp"
 #include "evaluation/device_timing.hpp"
 #include "metrics/incremental_evaluator.hpp"
 #include "metrics/metrics.hpp"
 #include "metrics/reference.hpp"
-#include "statistics.hpp"
-#include "time_profile.hpp"
-#include "timemodel/profile.hpp"
+#include "timemodel/timing.hpp"
 
-namespace lodopt::cli {
+namespace lodopt::evaluation {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -39,7 +34,7 @@ double microsecondsPerCall(Call call, double minSeconds, std::int64_t& calls) {
         perCall.push_back(secondsSince(start) * 1e6 / double(perBatch));
         calls += perBatch;
     }
-    return median(perCall);
+    return timemodel::median(perCall);
 }
 
 optimizer::Combination randomCombination(const std::vector<int>& levelCounts, std::mt19937_64& rng) {
@@ -52,86 +47,10 @@ optimizer::Combination randomCombination(const std::vector<int>& levelCounts, st
 
 }  // namespace
 
-bool isStochastic(const std::string& algorithm) {
-    return algorithm == "gapso" || algorithm == "pso" || algorithm == "ga" || algorithm == "random";
-}
-
-std::vector<AlgorithmRun> runAlgorithmGrid(const evaluation::SearchView& context, const OptimizeOptions& options,
-                                           const std::vector<std::string>& algorithms,
-                                           const std::vector<std::int64_t>& budgets, int seeds,
-                                           const std::vector<AlgorithmRun>& finished,
-                                           const std::function<void(const AlgorithmRun&)>& onNewRun) {
-    std::vector<AlgorithmRun> runs;
-    for (const std::string& algorithm : algorithms) {
-        for (std::int64_t budget : budgets) {
-            OptimizeOptions runOptions = options;
-            runOptions.maxEvaluations = budget;
-            // As in compare: the evaluation budget decides; the iteration cap only ends a
-            // converged swarm circling through cached candidates.
-            runOptions.maxIterations = int(std::max<std::int64_t>(budget, 1000));
-            runOptions.stableIterations = 0;
-            runOptions.maxSeconds = 0.0;
-            const int runsHere = isStochastic(algorithm) ? seeds : 1;
-            for (int seed = 1; seed <= runsHere; ++seed) {
-                const AlgorithmRun* saved = findRun(finished, algorithm, budget, std::uint64_t(seed));
-                if (saved) {
-                    runs.push_back(*saved);
-                    continue;
-                }
-                const auto start = Clock::now();
-                const optimizer::Result result = runAlgorithm(context, runOptions, algorithm, std::uint64_t(seed));
-                AlgorithmRun run;
-                run.wallSeconds = secondsSince(start);
-                run.algorithm = algorithm;
-                run.evaluationBudget = budget;
-                run.seed = std::uint64_t(seed);
-                run.fitness = result.bestScore.fitness;
-                run.predictedMs = result.predictedMs;
-                run.evaluations = result.evaluations;
-                runs.push_back(run);
-                onNewRun(run);
-            }
-        }
-    }
-    return runs;
-}
-
-const AlgorithmRun* findRun(const std::vector<AlgorithmRun>& runs, const std::string& algorithm,
-                            std::int64_t evaluationBudget, std::uint64_t seed) {
-    for (const AlgorithmRun& run : runs) {
-        if (run.algorithm == algorithm && run.evaluationBudget == evaluationBudget && run.seed == seed) return &run;
-    }
-    return nullptr;
-}
-
-BestKnown searchBestKnown(const evaluation::SearchView& context, const OptimizeOptions& options, double exhaustiveLimit) {
-    BestKnown best;
-    best.combinations = optimizer::combinationCount(context.problem.levelCounts);
-    if (best.combinations <= exhaustiveLimit) {
-        OptimizeOptions exhaustive = options;
-        exhaustive.maxEvaluations = 0;
-        exhaustive.maxSeconds = 0.0;
-        const auto start = Clock::now();
-        const optimizer::Result result = runAlgorithm(context, exhaustive, "exhaustive", 1);
-        best.seconds = secondsSince(start);
-        best.fitness = result.bestScore.fitness;
-        best.evaluations = result.evaluations;
-        best.source = "exhaustive";
-    } else {
-        best.source = "best found";
-    }
-    return best;
-}
-
-void applyBestKnown(BestKnown& best, std::vector<AlgorithmRun>& runs) {
-    // The exhaustive optimum is the ceiling; "best found" is the best any run reached.
-    for (const AlgorithmRun& run : runs) best.fitness = std::max(best.fitness, run.fitness);
-    for (AlgorithmRun& run : runs) run.gap = std::max(0.0, best.fitness - run.fitness);
-}
-
-std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const evaluation::SearchView& context,
-                                          const OptimizeOptions& options, int candidates, std::uint64_t seed) {
-    const std::vector<int>& levelCounts = context.problem.levelCounts;
+std::vector<EvalPathRow> measureEvaluationPaths(const SearchView& view, renderer::Renderer& renderer,
+                                                const metrics::MetricParameters& metrics, int threads, int candidates,
+                                                std::uint64_t seed) {
+    const std::vector<int>& levelCounts = view.problem.levelCounts;
     std::mt19937_64 rng(seed);
     std::vector<optimizer::Combination> random, walk;
     for (int i = 0; i < candidates; ++i) random.push_back(randomCombination(levelCounts, rng));
@@ -148,14 +67,14 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const evaluat
         }
         walk.push_back(next);
     }
-    const evaluation::ViewSetup& setup = *context.setup;
+    const ViewSetup& setup = *view.setup;
     // What a search evaluates (fitness only), on both paths.
-    const metrics::MetricParameters search = evaluation::searchParameters(prepared.metrics);
+    const metrics::MetricParameters search = searchParameters(metrics);
     std::vector<EvalPathRow> rows;
     for (const auto& [workload, set] :
          {std::pair<std::string, const std::vector<optimizer::Combination>*>{"random", &random}, {"walk", &walk}}) {
         // Full path first: its fitness is what the fast path is compared with.
-        evaluation::FullRenderEvaluator full(setup, *prepared.renderer, search);
+        FullRenderEvaluator full(setup, renderer, search);
         full.evaluate(set->front());  // warm-up: buffers sized, GL state touched
         std::vector<double> fullFitness;
         auto start = Clock::now();
@@ -175,7 +94,7 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const evaluat
         };
         {
             // Batches of 12, a swarm iteration's worth, spread over the threads.
-            evaluation::LayerEvaluator fast(setup, search, options.threads);
+            LayerEvaluator fast(setup, search, threads);
             std::vector<optimizer::Score> scores(set->size());
             fast.evaluate(set->front());
             start = Clock::now();
@@ -184,10 +103,10 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const evaluat
                 fast.evaluateBatch(std::span<const optimizer::Combination>(set->data() + begin, count),
                                    std::span<optimizer::Score>(scores.data() + begin, count));
             }
-            addFast("batch", options.threads, scores, secondsSince(start));
+            addFast("batch", threads, scores, secondsSince(start));
         }
         {
-            evaluation::LayerEvaluator fast(setup, search, 1);
+            LayerEvaluator fast(setup, search, 1);
             std::vector<optimizer::Score> scores;
             fast.evaluate(set->front());
             start = Clock::now();
@@ -198,17 +117,18 @@ std::vector<EvalPathRow> measureEvalPaths(PreparedScene& prepared, const evaluat
     return rows;
 }
 
-std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const evaluation::SearchView& context, double minSeconds) {
-    const evaluation::ViewSetup& setup = *context.setup;
+std::vector<MetricsRow> measureMetrics(const SearchView& view, renderer::Renderer& renderer,
+                                       const metrics::MetricParameters& metrics, double minSeconds) {
+    const ViewSetup& setup = *view.setup;
     const renderer::Frame& reference = setup.reference();
     // The candidate: every searched object at its coarsest option, a realistic worst case.
-    optimizer::Combination coarsest(context.problem.levelCounts.size());
-    for (std::size_t i = 0; i < coarsest.size(); ++i) coarsest[i] = context.problem.levelCounts[i] - 1;
-    const renderer::Frame candidate = prepared.renderer->render(setup.toScene(coarsest), setup.camera());
+    optimizer::Combination coarsest(view.problem.levelCounts.size());
+    for (std::size_t i = 0; i < coarsest.size(); ++i) coarsest[i] = view.problem.levelCounts[i] - 1;
+    const renderer::Frame candidate = renderer.render(setup.toScene(coarsest), setup.camera());
     const int width = reference.width, height = reference.height;
     const metrics::ImageView c = metrics::makeImageView(candidate.rgba.data(), width, height, 4);
     const metrics::ImageView r = metrics::makeImageView(reference.rgba.data(), width, height, 4);
-    metrics::MetricParameters parameters = prepared.metrics;
+    metrics::MetricParameters parameters = metrics;
     // Fused deviations compare like with like: the reference fuses the three fidelities equally.
     parameters.ssimWeight = parameters.boundaryEntropyWeight = parameters.informationEntropyWeight = 1.0;
 
@@ -251,9 +171,7 @@ std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const evaluation
     const double fused = metrics::evaluate(c, r, parameters).fitness;
     add(
         "evaluate (fused, from scratch)", [&] { sink = metrics::evaluate(c, r, parameters).fitness; },
-        "fused float64 references",
-        [&] { sink = metrics::reference::fitness(c, r); },
-        fused, fusedReference);
+        "fused float64 references", [&] { sink = metrics::reference::fitness(c, r); }, fused, fusedReference);
     metrics::IncrementalEvaluator incremental(r, parameters);
     incremental.setCandidate(c);
     add(
@@ -291,19 +209,9 @@ std::vector<MetricsRow> measureMetrics(PreparedScene& prepared, const evaluation
     return rows;
 }
 
-std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const evaluation::SearchView& context,
-                                            const OptimizeOptions& options, int frames, int repeats, std::uint64_t seed,
-                                            std::vector<std::string>& warnings) {
-    timemodel::DeviceProfile profile;
-    try {
-        profile = options.profile.empty() ? timemodel::shippedProfile(prepared.scene.name)
-                                          : timemodel::loadProfile(options.profile);
-    } catch (const timemodel::TimeModelError& error) {
-        throw UsageError(error.what());
-    }
-    warnings = timemodel::profileWarnings(profile, prepared.renderer->glRendererString(), prepared.settings.width,
-                                          prepared.settings.height, timemodel::describeMachine(),
-                                          renderer::shadingName(prepared.settings.shading));
+std::vector<TimeModelRow> measureTimeModels(const SearchView& view, renderer::Renderer& renderer,
+                                            const timemodel::DeviceProfile& profile, int frames, int repeats,
+                                            std::uint64_t seed) {
     std::vector<TimeModelRow> rows;
     for (const timemodel::ModelResult& model : profile.models) {
         if (!model.fitted) continue;
@@ -317,8 +225,8 @@ std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const evalu
     }
     // Frames of this view: every object at a uniformly drawn level, timed now.
     std::mt19937_64 rng(seed);
-    const scenes::Scene& scene = prepared.scene;
-    const scenes::Camera& camera = context.setup->camera();
+    const scenes::Scene& scene = view.setup->scene();
+    const scenes::Camera& camera = view.setup->camera();
     std::vector<scenes::Combination> combinations;
     std::vector<double> measured;
     for (int f = 0; f < frames; ++f) {
@@ -327,13 +235,11 @@ std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const evalu
             combination[o] = std::uniform_int_distribution<int>(0, int(scene.objects[o].levels.size()) - 1)(rng);
         }
         // One batch as the profile's clock takes it (one untimed draw first).
-        measured.push_back(
-            evaluation::batchTime(evaluation::timeDraws(*prepared.renderer, combination, camera, repeats, 1),
-                                  profile.timing.clock));
+        measured.push_back(batchTime(timeDraws(renderer, combination, camera, repeats, 1), profile.timing.clock));
         combinations.push_back(std::move(combination));
     }
     // Every feature: the cost's table holds only what the chosen model reads.
-    const timemodel::FeatureTable table(scene, camera, prepared.settings.width, prepared.settings.height);
+    const timemodel::FeatureTable table(scene, camera, view.setup->width(), view.setup->height());
     for (const timemodel::ModelResult& result : profile.models) {
         if (!result.fitted) continue;
         const std::unique_ptr<timemodel::TimeModel> model = timemodel::modelFromProfile(profile, result.name);
@@ -348,4 +254,4 @@ std::vector<TimeModelRow> measureTimeModels(PreparedScene& prepared, const evalu
     return rows;
 }
 
-}  // namespace lodopt::cli
+}  // namespace lodopt::evaluation
