@@ -245,7 +245,6 @@ void plotScheduleTimes(ReportContext& context, const CsvTable& frames, double bu
     context.plot(times,
                  "Predicted and measured frame time per frame (measured columns appear when schedule ran with "
                  "--render); the all-finest prediction is cut off where it leaves the axis.");
-
 }
 
 }  // namespace
@@ -295,7 +294,6 @@ void plotScheduleLevels(ReportContext& context, const CsvTable& frames) {
         }
         context.html.table({"level", "object-frames", "share"}, rows);
     }
-
 }
 
 }  // namespace
@@ -330,12 +328,7 @@ void plotScheduleDecisions(ReportContext& context, const CsvTable& frames) {
         spec.height = 360;
         context.plot(spec, "The scheduler's own cost per frame, and how many drawn objects changed level.");
     }
-
 }
-
-}  // namespace
-
-namespace {
 
 // Fitness along the path, when schedule scored its frames.
 void plotScheduleFitness(ReportContext& context, const CsvTable& frames) {

@@ -46,9 +46,12 @@ GrayScale grayScale(GrayWeights weights) {
         return GrayScale{r, g, b, scale, 1.0 / scale};
     };
     switch (weights) {
-    case GrayWeights::Paper: return make(30, 59, 11, 100);
-    case GrayWeights::Bt601: return make(299, 587, 114, 1000);
-    case GrayWeights::Bt709: return make(2126, 7152, 722, 10000);
+        case GrayWeights::Paper:
+            return make(30, 59, 11, 100);
+        case GrayWeights::Bt601:
+            return make(299, 587, 114, 1000);
+        case GrayWeights::Bt709:
+            return make(2126, 7152, 722, 10000);
     }
     throw MetricError("unknown gray weights value " + std::to_string(int(weights)));
 }
@@ -127,22 +130,35 @@ LODOPT_METRICS_CLONES std::int64_t ssimFixedSum(const double* values, int count)
     return sum;
 }
 
-void FixedPooledMap::resize(int width, int height) {
+template <typename TileSum, typename Total>
+void TiledMap<TileSum, Total>::resize(int width, int height) {
     mWidth = std::max(width, 0);
     mHeight = std::max(height, 0);
     mTiles = poolTiles(mWidth);
     mValues.assign(std::size_t(mWidth) * mHeight, 0.0);
-    mTileSums.assign(std::size_t(mTiles) * mHeight, 0);
-    mRowSums.assign(std::size_t(mHeight), 0);
+    mTileSums.assign(std::size_t(mTiles) * mHeight, TileSum(0));
+    mRowSums.assign(std::size_t(mHeight), TileSum(0));
     mTotal = 0;
 }
+template class TiledMap<std::int64_t, SsimFixedTotal>;
+template class TiledMap<double, double>;
 
-void FixedPooledMap::refresh(int x0, int y0, int x1, int y1) {
+namespace {
+
+// [x0, x1) x [y0, y1) clipped to a width x height map; false when nothing is left.
+bool clipRect(int& x0, int& y0, int& x1, int& y1, int width, int height) {
     x0 = std::max(x0, 0);
     y0 = std::max(y0, 0);
-    x1 = std::min(x1, mWidth);
-    y1 = std::min(y1, mHeight);
-    if (x0 >= x1 || y0 >= y1) return;
+    x1 = std::min(x1, width);
+    y1 = std::min(y1, height);
+    return x0 < x1 && y0 < y1;
+}
+
+}  // namespace
+
+template <>
+void FixedPooledMap::refresh(int x0, int y0, int x1, int y1) {
+    if (!clipRect(x0, y0, x1, y1, mWidth, mHeight)) return;
     const int t0 = x0 / kPoolTile, t1 = (x1 - 1) / kPoolTile + 1;
     for (int y = y0; y < y1; ++y) {
         std::int64_t* tiles = mTileSums.data() + std::size_t(y) * mTiles;
@@ -159,22 +175,9 @@ void FixedPooledMap::refresh(int x0, int y0, int x1, int y1) {
     }
 }
 
-void PooledMap::resize(int width, int height) {
-    mWidth = std::max(width, 0);
-    mHeight = std::max(height, 0);
-    mTiles = poolTiles(mWidth);
-    mValues.assign(std::size_t(mWidth) * mHeight, 0.0);
-    mTileSums.assign(std::size_t(mTiles) * mHeight, 0.0);
-    mRowSums.assign(std::size_t(mHeight), 0.0);
-    mTotal = 0;
-}
-
+template <>
 void PooledMap::refresh(int x0, int y0, int x1, int y1) {
-    x0 = std::max(x0, 0);
-    y0 = std::max(y0, 0);
-    x1 = std::min(x1, mWidth);
-    y1 = std::min(y1, mHeight);
-    if (x0 >= x1 || y0 >= y1) return;
+    if (!clipRect(x0, y0, x1, y1, mWidth, mHeight)) return;
     const int t0 = x0 / kPoolTile, t1 = (x1 - 1) / kPoolTile + 1;
     for (int y = y0; y < y1; ++y) {
         double* tiles = mTileSums.data() + std::size_t(y) * mTiles;
@@ -246,8 +249,8 @@ namespace {
 // the background" (1), "reference differs from the background" (2), "difference above the
 // tolerance" (4); then per pixel, the OR of its channels' flags decides the class.
 template <int Channels>
-void classifyRowFixed(const std::uint8_t* candidate, const std::uint8_t* reference, int count,
-                      const CoverageRule& rule, std::uint8_t* out) {
+void classifyRowFixed(const std::uint8_t* candidate, const std::uint8_t* reference, int count, const CoverageRule& rule,
+                      std::uint8_t* out) {
     constexpr int kChunk = 64;
     std::uint8_t background[kChunk * Channels];
     for (int i = 0; i < kChunk * Channels; ++i) background[i] = rule.background[std::size_t(i % Channels)];
@@ -277,9 +280,15 @@ void classifyRowFixed(const std::uint8_t* candidate, const std::uint8_t* referen
 void classifyRow(const std::uint8_t* candidate, const std::uint8_t* reference, int count, const CoverageRule& rule,
                  std::uint8_t* out) {
     switch (rule.channels) {
-    case 1: classifyRowFixed<1>(candidate, reference, count, rule, out); break;
-    case 3: classifyRowFixed<3>(candidate, reference, count, rule, out); break;
-    default: classifyRowFixed<4>(candidate, reference, count, rule, out); break;
+        case 1:
+            classifyRowFixed<1>(candidate, reference, count, rule, out);
+            break;
+        case 3:
+            classifyRowFixed<3>(candidate, reference, count, rule, out);
+            break;
+        default:
+            classifyRowFixed<4>(candidate, reference, count, rule, out);
+            break;
     }
 }
 

@@ -69,7 +69,9 @@ void grayBinsRow(const std::int32_t* scaledGray, int count, const GrayScale& gra
 // Map sums are pooled as: tiles of kPoolTile columns (4 interleaved accumulators), then the
 // row's tiles in order, then the rows in order. A changed rectangle re-pools only its tiles.
 constexpr int kPoolTile = 64;
-inline int poolTiles(int width) { return (width + kPoolTile - 1) / kPoolTile; }
+inline int poolTiles(int width) {
+    return (width + kPoolTile - 1) / kPoolTile;
+}
 double tileSum(const double* values, int count);
 // Sum of one row of `width` values; writes its tile sums to `tileSums` when not null.
 double rowSum(const double* row, int width, double* tileSums);
@@ -99,27 +101,12 @@ inline double ssimMeanFromFixed(SsimFixedTotal total, std::uint64_t windows) {
     return double(total) / kSsimFixedScale / double(windows);
 }
 
-// The SSIM map with its fixed-point tile and row sums.
-class FixedPooledMap {
-public:
-    void resize(int width, int height);  // all values 0
-    int width() const { return mWidth; }
-    int height() const { return mHeight; }
-    double* row(int y) { return mValues.data() + std::size_t(y) * mWidth; }
-    const double* values() const { return mValues.data(); }
-    // Re-pools the tiles touching [x0, x1) in rows [y0, y1) after their values changed.
-    void refresh(int x0, int y0, int x1, int y1);
-    SsimFixedTotal total() const { return mTotal; }
-
-private:
-    int mWidth = 0, mHeight = 0, mTiles = 0;
-    std::vector<double> mValues;
-    std::vector<std::int64_t> mTileSums, mRowSums;
-    SsimFixedTotal mTotal = 0;
-};
-
-// A map of per-pixel values kept with its tile and row sums (the paper's entropy forms).
-class PooledMap {
+// A map of per-pixel values kept with its tile and row sums, so that a changed rectangle
+// re-pools only its tiles. Two kinds: the SSIM map in fixed point (FixedPooledMap: integer
+// sums updated in place, exact) and the paper's entropy terms (PooledMap: a changed row and
+// the total re-summed in one order, so the sum never depends on the order of the updates).
+template <typename TileSum, typename Total>
+class TiledMap {
 public:
     void resize(int width, int height);  // all values 0
     int width() const { return mWidth; }
@@ -129,13 +116,16 @@ public:
     bool empty() const { return mWidth <= 0 || mHeight <= 0; }
     // Re-pools the tiles touching [x0, x1) in rows [y0, y1) after their values changed.
     void refresh(int x0, int y0, int x1, int y1);
-    double total() const { return mTotal; }
+    Total total() const { return mTotal; }
 
 private:
     int mWidth = 0, mHeight = 0, mTiles = 0;
-    std::vector<double> mValues, mTileSums, mRowSums;
-    double mTotal = 0;
+    std::vector<double> mValues;
+    std::vector<TileSum> mTileSums, mRowSums;
+    Total mTotal = 0;
 };
+using FixedPooledMap = TiledMap<std::int64_t, SsimFixedTotal>;
+using PooledMap = TiledMap<double, double>;
 
 // --- SSIM ---------------------------------------------------------------------------------
 
@@ -156,7 +146,7 @@ struct SsimKernel {
     int window = 11;  // effective (odd) window side
     int radius = 5;
     std::array<double, kSsimMaxWindow> weights{};  // normalised Gaussian, symmetric
-    double c1 = 0, c2 = 0;                          // (K1 L scale)^2, (K2 L scale)^2
+    double c1 = 0, c2 = 0;                         // (K1 L scale)^2, (K2 L scale)^2
     int mapWidth = 0, mapHeight = 0;
 };
 SsimKernel makeSsimKernel(const MetricParameters& parameters, int width, int height, const GrayScale& gray);
@@ -182,10 +172,9 @@ void ssimReferenceStatistics(const std::int32_t* grayY, std::size_t grayStride, 
 // ssimReferenceStatistics. `map` points at (mx0, my0), rows `mapStride` apart.
 // With `liveOnly`, only windows that read several of its parts are computed (the others keep
 // their map values: the caller sets owned windows from the cache).
-void ssimWindows(const std::int32_t* grayX, const std::int32_t* grayY, std::size_t grayStride,
-                 const SsimKernel& kernel, int mx0, int my0, int mx1, int my1, const double* mean,
-                 const double* variance, std::size_t statStride, SsimScratch& scratch, double* map,
-                 std::size_t mapStride, const PartCache* liveOnly = nullptr);
+void ssimWindows(const std::int32_t* grayX, const std::int32_t* grayY, std::size_t grayStride, const SsimKernel& kernel,
+                 int mx0, int my0, int mx1, int my1, const double* mean, const double* variance, std::size_t statStride,
+                 SsimScratch& scratch, double* map, std::size_t mapStride, const PartCache* liveOnly = nullptr);
 
 // --- Entropies ----------------------------------------------------------------------------
 
