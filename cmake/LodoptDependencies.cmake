@@ -86,3 +86,18 @@ if(LODOPT_BUILD_BENCH)
     lodopt_missing(libbenchmark-dev "Google Benchmark")
   endif()
 endif()
+
+# pagmo2's optimizers as peers of lodopt's searches (optimizer/pagmo, docs/optimizer.md "Peers:
+# pagmo2"). Optional: without libpagmo-dev lodopt builds without the pagmo:* algorithms.
+# LODOPT_PAGMO=ON requires it (the quick start's test build does, so CI cannot silently lose it).
+option(LODOPT_PAGMO "Require pagmo2 (libpagmo-dev) for the pagmo:* algorithms" OFF)
+find_package(pagmo QUIET CONFIG)
+if(pagmo_FOUND)
+  set(LODOPT_WITH_PAGMO ON)
+  message(STATUS "lodopt: pagmo2 ${pagmo_VERSION} found: the pagmo:* algorithms are built")
+elseif(LODOPT_PAGMO)
+  lodopt_missing(libpagmo-dev "pagmo2 (LODOPT_PAGMO=ON)")
+else()
+  set(LODOPT_WITH_PAGMO OFF)
+  message(STATUS "lodopt: pagmo2 not found (libpagmo-dev): building without the pagmo:* algorithms")
+endif()

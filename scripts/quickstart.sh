@@ -15,6 +15,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libosmesa6-dev libopencv-dev libpng-dev libjpeg-dev libopenexr-dev
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev libcli11-dev libdraco-dev libwebp-dev
+  libpagmo-dev
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
   clang libclang-rt-14-dev ccache
 )
@@ -50,7 +51,8 @@ fi
 export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
 
 build=${LODOPT_BUILD_DIR:-build}
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+# LODOPT_PAGMO=ON: the pagmo:* algorithms (libpagmo-dev, installed above) must be built.
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DLODOPT_PAGMO=ON >/dev/null
 cmake --build "$build" -j"$(nproc)"
 
 if [ "$mode" = run ]; then

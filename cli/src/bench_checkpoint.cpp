@@ -17,7 +17,8 @@ nlohmann::json toJson(const evaluation::AlgorithmRun& run) {
             {"wall_seconds", run.wallSeconds},
             {"fitness", run.fitness},
             {"predicted_ms", run.predictedMs},
-            {"evaluations", run.evaluations}};
+            {"evaluations", run.evaluations},
+            {"improvements", run.improvements}};
 }
 
 evaluation::AlgorithmRun runFromJson(const nlohmann::json& saved) {
@@ -29,6 +30,9 @@ evaluation::AlgorithmRun runFromJson(const nlohmann::json& saved) {
     run.fitness = numberOrNaN(saved.at("fitness"));
     run.predictedMs = numberOrNaN(saved.at("predicted_ms"));
     run.evaluations = saved.at("evaluations").get<std::int64_t>();
+    for (const nlohmann::json& point : saved.at("improvements")) {
+        run.improvements.emplace_back(point.at(0).get<std::int64_t>(), numberOrNaN(point.at(1)));
+    }
     return run;
 }
 

@@ -98,6 +98,7 @@ nlohmann::json checkpointIdentity(const BenchOptions& bench) {
             {"profile", o.profile},
             {"model", o.model},
             {"fill", effectiveFillProbability(o)},  // GA-PSO's default; bench has no --fill
+            {"seed-from", seedAlgorithms(o.seedFrom)},
             {"exhaustive-limit", bench.exhaustiveLimit},
             {"candidates", bench.candidates},
             {"metrics-seconds", bench.metricsSeconds},
@@ -124,6 +125,7 @@ BenchGrid parseGrid(const BenchOptions& bench) {
         grid.budgets.push_back(value);
     }
     if (bench.optimize.view == "all") throw UsageError("bench: --view must name one view");
+    seedAlgorithms(bench.optimize.seedFrom);  // throws UsageError for a bad --seed-from
     return grid;
 }
 
@@ -225,37 +227,42 @@ std::vector<evaluation::AlgorithmRun> runUnits(const BenchOptions& bench, const 
 
 // bench.json's tables, with the CSV files of the same rows written beside it.
 struct BenchTables {
-    nlohmann::json algorithms, paths, metrics, timeModels;
+    nlohmann::json runs, algorithms, paths, metrics, timeModels;
 };
 
 nlohmann::json algorithmTable(const BenchGrid& grid, const std::vector<evaluation::AlgorithmRun>& runs,
                               const std::filesystem::path& dir) {
     // Per (algorithm, budget): medians over seeds.
     std::ostringstream runsCsv, algorithmsCsv;
-    runsCsv << "algorithm,evaluation_budget,seed,wall_seconds,fitness,gap,evaluations,predicted_ms\n";
+    runsCsv << "algorithm,evaluation_budget,seed,wall_seconds,fitness,gap,evaluations,predicted_ms,"
+               "evaluations_to_near_best\n";
     for (const evaluation::AlgorithmRun& run : runs) {
         runsCsv << run.algorithm << ',' << run.evaluationBudget << ',' << run.seed << ',' << number(run.wallSeconds)
                 << ',' << number(run.fitness) << ',' << number(run.gap) << ',' << run.evaluations << ','
-                << number(run.predictedMs) << '\n';
+                << number(run.predictedMs) << ',' << run.evaluationsToNearBest << '\n';
     }
     algorithmsCsv << "algorithm,evaluation_budget,runs,median_wall_seconds,median_gap,min_gap,max_gap,median_fitness,"
-                     "median_evaluations\n";
+                     "median_evaluations,reached_near_best,median_evaluations_to_near_best\n";
     nlohmann::json table = nlohmann::json::array();
     for (const std::string& name : grid.algorithms) {
         for (std::int64_t budget : grid.budgets) {
-            std::vector<double> wall, gap, fitness, evaluations;
+            std::vector<double> wall, gap, fitness, evaluations, toNearBest;
             for (const evaluation::AlgorithmRun& run : runs) {
                 if (run.algorithm != name || run.evaluationBudget != budget) continue;
                 wall.push_back(run.wallSeconds);
                 gap.push_back(run.gap);
                 fitness.push_back(run.fitness);
                 evaluations.push_back(double(run.evaluations));
+                if (run.evaluationsToNearBest >= 0) toNearBest.push_back(double(run.evaluationsToNearBest));
             }
+            // Over the runs that came near the best known; null (empty CSV field) when none did.
+            const double medianToNearBest = toNearBest.empty() ? NAN : median(toNearBest);
             const double minGap = *std::min_element(gap.begin(), gap.end());
             const double maxGap = *std::max_element(gap.begin(), gap.end());
             algorithmsCsv << name << ',' << budget << ',' << wall.size() << ',' << number(median(wall)) << ','
                           << number(median(gap)) << ',' << number(minGap) << ',' << number(maxGap) << ','
-                          << number(median(fitness)) << ',' << number(median(evaluations)) << '\n';
+                          << number(median(fitness)) << ',' << number(median(evaluations)) << ',' << toNearBest.size()
+                          << ',' << number(medianToNearBest) << '\n';
             table.push_back({{"algorithm", name},
                              {"evaluation_budget", budget},
                              {"runs", wall.size()},
@@ -264,7 +271,9 @@ nlohmann::json algorithmTable(const BenchGrid& grid, const std::vector<evaluatio
                              {"min_gap", minGap},
                              {"max_gap", maxGap},
                              {"median_fitness", median(fitness)},
-                             {"median_evaluations", median(evaluations)}});
+                             {"median_evaluations", median(evaluations)},
+                             {"reached_near_best", toNearBest.size()},
+                             {"median_evaluations_to_near_best", jsonNumberOrNull(medianToNearBest)}});
         }
     }
     scenes::writeTextAtomically((dir / kBenchRunsCsv).string(), runsCsv.str());
@@ -276,6 +285,18 @@ BenchTables writeTables(const BenchGrid& grid, const std::vector<evaluation::Alg
                         const BenchCheckpoint& checkpoint, const std::filesystem::path& dir) {
     BenchTables tables;
     tables.algorithms = algorithmTable(grid, runs, dir);
+    // Every run with its improvement curve, so that a reader can measure it against another
+    // best known (scripts/peers_table.py joins two benches of one view).
+    tables.runs = nlohmann::json::array();
+    for (const evaluation::AlgorithmRun& run : runs) {
+        tables.runs.push_back({{"algorithm", run.algorithm},
+                               {"evaluation_budget", run.evaluationBudget},
+                               {"seed", run.seed},
+                               {"fitness", run.fitness},
+                               {"evaluations", run.evaluations},
+                               {"wall_seconds", run.wallSeconds},
+                               {"improvements", run.improvements}});
+    }
     std::ostringstream pathsCsv, metricsCsv, timeCsv;
     pathsCsv << "path,workload,mode,threads,candidates,seconds,evals_per_second,mean_abs_fitness_diff,"
                 "max_abs_fitness_diff\n";
@@ -338,9 +359,14 @@ void printBench(const nlohmann::json& document, const BenchCheckpoint& checkpoin
     std::cout << "median over seeds at " << lastBudget << " evaluations:\n";
     for (const nlohmann::json& row : document["algorithm_budget"]) {
         if (row["evaluation_budget"] != lastBudget) continue;
-        std::cout << "  " << std::left << std::setw(11) << row["algorithm"].get<std::string>() << std::right << " gap "
+        const nlohmann::json& toNear = row["median_evaluations_to_near_best"];
+        std::cout << "  " << std::left << std::setw(26) << row["algorithm"].get<std::string>() << std::right << " gap "
                   << std::setw(10) << std::setprecision(3) << row["median_gap"].get<double>() << "  wall "
-                  << std::setw(8) << row["median_wall_seconds"].get<double>() << " s\n";
+                  << std::setw(8) << row["median_wall_seconds"].get<double>()
+                  << " s  within 1e-3: " << row["reached_near_best"].get<int>() << "/" << row["runs"].get<int>()
+                  << " runs"
+                  << (toNear.is_null() ? std::string() : ", median " + std::to_string(toNear.get<std::int64_t>()))
+                  << "\n";
     }
     const nlohmann::json& table = document["surrogate_table"];
     std::cout << "  (mckp's per-view table, not in its wall time: " << table["evaluations"].get<std::int64_t>()
@@ -427,6 +453,7 @@ void runBench(const BenchOptions& bench) {
           {"seconds", tableSeconds},
           {"note", "measured once per view before any run; mckp's wall time excludes it"}}},
         {"algorithm_budget", tables.algorithms},
+        {"runs", tables.runs},
         {"eval_paths", tables.paths},
         {"metrics", tables.metrics},
         {"time_model_errors", tables.timeModels},
@@ -468,6 +495,9 @@ void addBenchCommand(CLI::App& app) {
         ->capture_default_str();
     addSceneSeedOption(*command, o.sceneSeed);
     command->add_option("--algos", bench->algorithms, "Comma-separated algorithms")->capture_default_str();
+    command->add_option("--seed-from", o.seedFrom,
+                        "Start gapso, pso and ga from these algorithms' answers (mckp, greedy, screensize; as "
+                        "optimize's default 'screensize,mckp'); default none: every search from a random start");
     command->add_option("--evals", bench->budgets, "Comma-separated evaluation budgets")->capture_default_str();
     command->add_option("--seeds", bench->seeds, "Seeds 1..N per stochastic algorithm and budget")
         ->check(CLI::Range(1, 1000))

@@ -252,10 +252,15 @@ void printCompare(const nlohmann::json& document, const std::filesystem::path& d
               << document["budget_ms"].get<double>() << " ms, " << document["evaluation_budget"].get<std::int64_t>()
               << " evaluations per run, " << document["seeds"].get<int>() << " seeds, best known "
               << std::setprecision(6) << document["best_known_fitness"].get<double>() << "\n";
-    std::cout << std::left << std::setw(12) << "algorithm" << std::right << std::setw(10) << "median" << std::setw(10)
+    // The name column fits the longest name ("pagmo:simulated_annealing").
+    int nameWidth = 12;
+    for (const nlohmann::json& row : document["algorithms"]) {
+        nameWidth = std::max(nameWidth, int(row["algorithm"].get<std::string>().size()) + 2);
+    }
+    std::cout << std::left << std::setw(nameWidth) << "algorithm" << std::right << std::setw(10) << "median" << std::setw(10)
               << "min" << std::setw(10) << "max" << std::setw(14) << "evals→99%" << std::setw(10) << "wall s\n";
     for (const nlohmann::json& row : document["algorithms"]) {
-        std::cout << std::left << std::setw(12) << row["algorithm"].get<std::string>() << std::right << std::fixed
+        std::cout << std::left << std::setw(nameWidth) << row["algorithm"].get<std::string>() << std::right << std::fixed
                   << std::setprecision(4) << std::setw(10) << row["median_fitness"].get<double>() << std::setw(10)
                   << row["min_fitness"].get<double>() << std::setw(10) << row["max_fitness"].get<double>()
                   << std::setw(14)

@@ -7,6 +7,9 @@
 #include "cli_common.hpp"
 #include "interrupt.hpp"
 #include "optimizer/problem.hpp"
+#if defined(LODOPT_WITH_PAGMO)
+#include "optimizer/pagmo_algorithms.hpp"
+#endif
 #include "scenes/scene.hpp"
 
 namespace {
@@ -28,6 +31,9 @@ void keepFreedMemory() {
 int main(int argc, char** argv) {
     using namespace lodopt::cli;
     keepFreedMemory();
+#if defined(LODOPT_WITH_PAGMO)
+    lodopt::optimizer::registerPagmoAlgorithms();  // before the commands list the algorithms
+#endif
     CLI::App app{"lodopt: perceptual LOD combination optimizer", "lodopt"};
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("lodopt ") + LODOPT_VERSION);

@@ -6,7 +6,7 @@
 namespace lodopt::evaluation {
 
 bool isStochastic(const std::string& algorithm) {
-    return algorithm == "gapso" || algorithm == "pso" || algorithm == "ga" || algorithm == "random";
+    return optimizer::isSeededAlgorithm(algorithm);
 }
 
 std::vector<AlgorithmRun> runAlgorithmGrid(const SearchView& view, const optimizer::SearchOptions& base,
@@ -42,6 +42,11 @@ std::vector<AlgorithmRun> runAlgorithmGrid(const SearchView& view, const optimiz
                 run.fitness = result.bestScore.fitness;
                 run.predictedMs = result.predictedMs;
                 run.evaluations = result.evaluations;
+                for (const optimizer::IterationLog& row : result.log) {
+                    if (run.improvements.empty() || row.bestFitness > run.improvements.back().second) {
+                        run.improvements.emplace_back(row.evaluations, row.bestFitness);
+                    }
+                }
                 runs.push_back(run);
                 onNewRun(run);
             }
@@ -80,7 +85,16 @@ BestKnown searchBestKnown(const SearchView& view, double exhaustiveLimit) {
 void applyBestKnown(BestKnown& best, std::vector<AlgorithmRun>& runs) {
     // The exhaustive optimum is the ceiling; "best found" is the best any run reached.
     for (const AlgorithmRun& run : runs) best.fitness = std::max(best.fitness, run.fitness);
-    for (AlgorithmRun& run : runs) run.gap = std::max(0.0, best.fitness - run.fitness);
+    for (AlgorithmRun& run : runs) {
+        run.gap = std::max(0.0, best.fitness - run.fitness);
+        run.evaluationsToNearBest = -1;
+        for (const auto& [evaluations, fitness] : run.improvements) {
+            if (fitness >= best.fitness - kNearBestKnown) {
+                run.evaluationsToNearBest = evaluations;
+                break;
+            }
+        }
+    }
 }
 
 }  // namespace lodopt::evaluation

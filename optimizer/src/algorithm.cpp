@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "optimizer/baselines.hpp"
@@ -74,10 +75,44 @@ bool isBetter(double fitnessA, double msA, const Combination& a, double fitnessB
     return std::lexicographical_compare(a.begin(), a.end(), b.begin(), b.end());
 }
 
+namespace {
+
+struct Registered {
+    AlgorithmMaker make;
+    bool seeded = false;
+};
+
+// lodopt's own names, then the registered ones.
+std::vector<std::string>& names() {
+    static std::vector<std::string> list = {"gapso",      "pso",        "ga",   "greedy",     "distance",
+                                            "importance", "screensize", "mckp", "exhaustive", "random"};
+    return list;
+}
+
+std::map<std::string, Registered, std::less<>>& registered() {
+    static std::map<std::string, Registered, std::less<>> algorithms;
+    return algorithms;
+}
+
+}  // namespace
+
 const std::vector<std::string>& algorithmNames() {
-    static const std::vector<std::string> names = {"gapso",      "pso",        "ga",   "greedy",     "distance",
-                                                   "importance", "screensize", "mckp", "exhaustive", "random"};
-    return names;
+    return names();
+}
+
+bool isSeededAlgorithm(std::string_view name) {
+    if (name == "gapso" || name == "pso" || name == "ga" || name == "random") return true;
+    const auto found = registered().find(name);
+    return found != registered().end() && found->second.seeded;
+}
+
+void registerAlgorithm(const std::string& name, AlgorithmMaker make, bool seeded) {
+    if (name.empty() || !make) throw std::invalid_argument("registerAlgorithm: an empty name or maker");
+    if (std::find(names().begin(), names().end(), name) != names().end()) {
+        throw std::invalid_argument("registerAlgorithm: '" + name + "' is already an algorithm");
+    }
+    registered()[name] = Registered{std::move(make), seeded};
+    names().push_back(name);
 }
 
 std::unique_ptr<Algorithm> makeAlgorithm(std::string_view name, std::uint64_t seed) {
@@ -99,6 +134,7 @@ std::unique_ptr<Algorithm> makeAlgorithm(std::string_view name, std::uint64_t se
         parameters.seed = seed;
         return std::make_unique<RandomSearch>(parameters);
     }
+    if (const auto found = registered().find(name); found != registered().end()) return found->second.make(seed);
     std::string valid;
     for (const std::string& known : algorithmNames()) valid += (valid.empty() ? "" : ", ") + known;
     throw std::invalid_argument("unknown algorithm '" + std::string(name) + "' (valid: " + valid + ")");

@@ -9,14 +9,14 @@
 #include "optimizer/mckp.hpp"
 #include "optimizer/random.hpp"
 #include "optimizer/repair.hpp"
-#include "search_state.hpp"
+#include "optimizer/search_state.hpp"
 
 namespace lodopt::optimizer {
 
 Greedy::Greedy(GreedyParameters parameters) : mParameters(parameters) {}
 
 Result Greedy::run(const Problem& problem, const Termination& termination) const {
-    detail::SearchState state(problem, termination, name(), false);
+    SearchState state(problem, termination, name(), false);
     const bool useSurrogate = mParameters.benefit == BenefitSource::Surrogate;
     std::vector<std::vector<double>> measured;
     if (useSurrogate && problem.surrogateLoss.empty()) {
@@ -90,7 +90,7 @@ Result Greedy::run(const Problem& problem, const Termination& termination) const
             current = steps[static_cast<std::size_t>(chosen)];
             if (!useSurrogate) currentFitness = scores[static_cast<std::size_t>(chosen)].fitness;
         }
-        if (!useSurrogate && state.endIteration(detail::meanFitness(scores, scored))) return state.finish();
+        if (!useSurrogate && state.endIteration(meanFitness(scores, scored))) return state.finish();
         if (chosen < 0) break;
     }
 
@@ -125,7 +125,7 @@ Result Exhaustive::run(const Problem& problem, const Termination& termination) c
                                std::to_string(mParameters.maxCombinations));
         }
     }
-    detail::SearchState state(problem, termination, name(), false);
+    SearchState state(problem, termination, name(), false);
     const auto batchSize = static_cast<std::size_t>(mParameters.batchSize);
     std::vector<Combination> batch;
     batch.reserve(batchSize);
@@ -136,7 +136,7 @@ Result Exhaustive::run(const Problem& problem, const Termination& termination) c
     auto flush = [&]() {
         const std::size_t scored = state.evaluate(batch, std::span<Score>(scores.data(), batch.size()),
                                                   std::span<double>(predictedMs.data(), batch.size()));
-        const bool stop = state.endIteration(detail::meanFitness(scores, scored));
+        const bool stop = state.endIteration(meanFitness(scores, scored));
         batch.clear();
         // A budget spent exactly is not a reason to stop: the next feasible candidate decides.
         return stop && !(state.stopReason() == StopReason::MaxEvaluations && !state.truncated());
@@ -172,7 +172,7 @@ RandomSearch::RandomSearch(RandomSearchParameters parameters) : mParameters(para
 }
 
 Result RandomSearch::run(const Problem& problem, const Termination& termination) const {
-    detail::SearchState state(problem, termination, name(), true);
+    SearchState state(problem, termination, name(), true);
     Random random(mParameters.seed);
     const auto count = static_cast<std::size_t>(mParameters.samplesPerIteration);
     std::vector<Combination> batch(count, Combination(problem.levelCounts.size()));
@@ -185,7 +185,7 @@ Result RandomSearch::run(const Problem& problem, const Termination& termination)
             repairToBudget(problem, combination);
         }
         const std::size_t scored = state.evaluate(batch, scores, predictedMs);
-        if (state.endIteration(detail::meanFitness(scores, scored))) break;
+        if (state.endIteration(meanFitness(scores, scored))) break;
     } while (true);
     return state.finish();
 }

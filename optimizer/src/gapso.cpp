@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "optimizer/repair.hpp"
-#include "search_state.hpp"
+#include "optimizer/search_state.hpp"
 
 namespace lodopt::optimizer {
 
@@ -205,7 +205,7 @@ std::string_view Gapso::name() const {
 }
 
 Result Gapso::run(const Problem& problem, const Termination& termination) const {
-    detail::SearchState state(problem, termination, name(), true);
+    SearchState state(problem, termination, name(), true);
     const GapsoParameters& p = mParameters;
     for (std::size_t k = 0; k < p.initialCombinations.size(); ++k) {
         try {
@@ -259,7 +259,7 @@ Result Gapso::run(const Problem& problem, const Termination& termination) const 
                 particle.personalBestMs = predictedMs[k];
             }
         }
-        return detail::meanFitness(scores, scored);
+        return meanFitness(scores, scored);
     };
 
     double mean = evaluateSwarm(true);

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "optimizer/repair.hpp"
-#include "search_state.hpp"
+#include "optimizer/search_state.hpp"
 
 namespace lodopt::optimizer {
 
@@ -112,10 +112,10 @@ DistanceHeuristic::DistanceHeuristic(DistanceParameters parameters) : mParameter
 }
 
 Result DistanceHeuristic::run(const Problem& problem, const Termination& termination) const {
-    detail::SearchState state(problem, termination, name(), false);
+    SearchState state(problem, termination, name(), false);
     Combination combination = distanceLevels(problem, mParameters);
     repairToBudget(problem, combination);
-    return detail::evaluateAndFinish(state, combination);
+    return evaluateAndFinish(state, combination);
 }
 
 double importanceDenominator(const ImportanceView& view, double alpha1, double alpha2) {
@@ -173,7 +173,7 @@ std::vector<double> ImportanceHeuristic::importances(const Problem& problem) con
 }
 
 Result ImportanceHeuristic::run(const Problem& problem, const Termination& termination) const {
-    detail::SearchState state(problem, termination, name(), false);
+    SearchState state(problem, termination, name(), false);
     const std::vector<double> importanceOf = importances(problem);
     Combination combination = distanceLevels(problem, mParameters.distance);
     // Increasing importance: objects with I <= 1 come first, so those with I > 1 are lowered
@@ -193,7 +193,7 @@ Result ImportanceHeuristic::run(const Problem& problem, const Termination& termi
     } else {
         lowerInOrder(problem, increasing, combination);
     }
-    return detail::evaluateAndFinish(state, combination);
+    return evaluateAndFinish(state, combination);
 }
 
 Combination screenSizeLevels(const Problem& problem, const ScreenSizeParameters& parameters) {
@@ -233,12 +233,12 @@ ScreenSizeHeuristic::ScreenSizeHeuristic(ScreenSizeParameters parameters) : mPar
 }
 
 Result ScreenSizeHeuristic::run(const Problem& problem, const Termination& termination) const {
-    detail::SearchState state(problem, termination, name(), false);
+    SearchState state(problem, termination, name(), false);
     Combination combination = screenSizeLevels(problem, mParameters);
     std::vector<double> coverage(problem.levelCounts.size());
     for (std::size_t i = 0; i < coverage.size(); ++i) coverage[i] = problem.hints[i].screenCoverage;
     lowerInOrder(problem, orderBy(coverage), combination);
-    return detail::evaluateAndFinish(state, combination);
+    return evaluateAndFinish(state, combination);
 }
 
 }  // namespace lodopt::optimizer

@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "optimizer/repair.hpp"
-#include "search_state.hpp"
+#include "optimizer/search_state.hpp"
 
 namespace lodopt::optimizer {
 
@@ -159,7 +159,7 @@ Mckp::Mckp(MckpParameters parameters) : mParameters(parameters) {
 }
 
 Result Mckp::run(const Problem& problem, const Termination& termination) const {
-    detail::SearchState state(problem, termination, name(), false);
+    SearchState state(problem, termination, name(), false);
     std::vector<std::vector<double>> measured;
     if (problem.surrogateLoss.empty()) {
         const std::int64_t needed = surrogateEvaluations(problem.levelCounts) + 1;
@@ -196,7 +196,7 @@ Result Mckp::run(const Problem& problem, const Termination& termination) const {
     if (combination.empty()) combination = base;
     repairToBudget(problem, combination);  // the true cost may not be additive
 
-    return detail::evaluateAndFinish(state, combination);
+    return evaluateAndFinish(state, combination);
 }
 
 }  // namespace lodopt::optimizer

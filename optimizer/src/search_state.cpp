@@ -1,9 +1,9 @@
-#include "search_state.hpp"
+#include "optimizer/search_state.hpp"
 
 #include <cassert>
 #include <stdexcept>
 
-namespace lodopt::optimizer::detail {
+namespace lodopt::optimizer {
 
 namespace {
 
@@ -129,4 +129,4 @@ double meanFitness(std::span<const Score> scores, std::size_t count) {
     return sum / static_cast<double>(count);
 }
 
-}  // namespace lodopt::optimizer::detail
+}  // namespace lodopt::optimizer

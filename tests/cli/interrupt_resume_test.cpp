@@ -190,11 +190,14 @@ nlohmann::json benchResult(const fs::path& dir) {
     document["best_known"].erase("exhaustive_seconds");
     document["surrogate_table"].erase("seconds");
     for (nlohmann::json& row : document["algorithm_budget"]) row.erase("median_wall_seconds");
-    document["runs_csv"] = csvColumns(dir / "bench_runs.csv", {"algorithm", "evaluation_budget", "seed", "fitness",
-                                                               "gap", "evaluations", "predicted_ms"});
+    for (nlohmann::json& run : document["runs"]) run.erase("wall_seconds");
+    document["runs_csv"] =
+        csvColumns(dir / "bench_runs.csv", {"algorithm", "evaluation_budget", "seed", "fitness", "gap", "evaluations",
+                                            "predicted_ms", "evaluations_to_near_best"});
     document["algorithms_csv"] =
-        csvColumns(dir / "bench_algorithms.csv", {"algorithm", "evaluation_budget", "runs", "median_gap", "min_gap",
-                                                  "max_gap", "median_fitness", "median_evaluations"});
+        csvColumns(dir / "bench_algorithms.csv",
+                   {"algorithm", "evaluation_budget", "runs", "median_gap", "min_gap", "max_gap", "median_fitness",
+                    "median_evaluations", "reached_near_best", "median_evaluations_to_near_best"});
     // A restored section keeps the thread count it was measured with: not compared.
     document["paths_csv"] = csvColumns(dir / "bench_eval_paths.csv", {"path", "workload", "mode", "candidates",
                                                                       "mean_abs_fitness_diff", "max_abs_fitness_diff"});
@@ -296,8 +299,14 @@ TEST(BenchCheckpoint, DoublesRoundTripExactly) {
     const double awkward[] = {0.1 + 0.2, 1.0 / 3.0, 5e-324, 1.7976931348623157e308, -0.0, 0.9820709083698521};
     BenchCheckpoint written;
     for (std::size_t i = 0; i < std::size(awkward); ++i) {
-        written.runs.push_back(
-            {"gapso", 30, i + 1, awkward[i], awkward[(i + 1) % 6], awkward[(i + 2) % 6], std::int64_t(i) * 7, 0.0});
+        written.runs.push_back({"gapso",
+                                30,
+                                i + 1,
+                                awkward[i],
+                                awkward[(i + 1) % 6],
+                                awkward[(i + 2) % 6],
+                                std::int64_t(i) * 7,
+                                {{1, awkward[(i + 3) % 6]}, {std::int64_t(i) * 5 + 2, awkward[(i + 4) % 6]}}});
     }
     written.bestKnown = lodopt::evaluation::BestKnown{awkward[0], "exhaustive", 150.0, 103, awkward[1]};
     written.evalPaths = std::vector<lodopt::evaluation::EvalPathRow>{
@@ -327,6 +336,11 @@ TEST(BenchCheckpoint, DoublesRoundTripExactly) {
         EXPECT_TRUE(same(read.runs[i].wallSeconds, written.runs[i].wallSeconds)) << i;
         EXPECT_TRUE(same(read.runs[i].fitness, written.runs[i].fitness)) << i;
         EXPECT_TRUE(same(read.runs[i].predictedMs, written.runs[i].predictedMs)) << i;
+        ASSERT_EQ(read.runs[i].improvements.size(), 2u);
+        for (std::size_t k = 0; k < 2; ++k) {
+            EXPECT_EQ(read.runs[i].improvements[k].first, written.runs[i].improvements[k].first);
+            EXPECT_TRUE(same(read.runs[i].improvements[k].second, written.runs[i].improvements[k].second)) << i;
+        }
     }
     ASSERT_TRUE(read.bestKnown && read.evalPaths && read.metrics && read.timeModels);
     EXPECT_TRUE(same(read.bestKnown->fitness, awkward[0]));

@@ -105,6 +105,18 @@ TEST(Benchmark, GridRunsEveryUnitOnceAndReusesFinishedRuns) {
     for (const evaluation::AlgorithmRun& run : runs) {
         EXPECT_GE(run.gap, 0.0);
         EXPECT_NEAR(run.gap, optimum - run.fitness, 1e-12);
+        // The curve: the first point is the first iteration, the best rises along it to the result's.
+        ASSERT_FALSE(run.improvements.empty());
+        EXPECT_EQ(run.improvements.back().second, run.fitness);
+        for (std::size_t k = 1; k < run.improvements.size(); ++k) {
+            EXPECT_GT(run.improvements[k].second, run.improvements[k - 1].second);
+            EXPECT_GE(run.improvements[k].first, run.improvements[k - 1].first);
+        }
+        // Near the best known exactly when the gap is within the tolerance, and no later than the run ended.
+        EXPECT_EQ(run.evaluationsToNearBest >= 0, run.gap <= evaluation::kNearBestKnown) << run.algorithm;
+        if (run.evaluationsToNearBest >= 0) {
+            EXPECT_LE(run.evaluationsToNearBest, run.evaluations);
+        }
     }
     // Above the limit: the best any run found.
     evaluation::BestKnown found = evaluation::searchBestKnown(view, 1.0);

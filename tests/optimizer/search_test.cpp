@@ -1,10 +1,11 @@
 // One search as the tool runs it (optimizer/search.hpp).
+#include "optimizer/search.hpp"
+
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 
 #include "fixtures.hpp"
-#include "optimizer/search.hpp"
 
 namespace lodopt::optimizer {
 namespace {
@@ -67,6 +68,46 @@ TEST(Search, AProblemWithoutVariablesEvaluatesItsOneCombination) {
     EXPECT_EQ(result.log.size(), 1u);
     problem.budgetMs = 1.0;
     EXPECT_THROW(runSearch(problem, options), BudgetError);
+}
+
+TEST(Search, RegisteredAlgorithmsJoinTheNamesAndRunByName) {
+    // An algorithm from another library: greedy's answer under another name.
+    class Renamed final : public Algorithm {
+    public:
+        std::string_view name() const override { return "test:greedy"; }
+        Result run(const Problem& problem, const Termination& termination) const override {
+            Result result = makeAlgorithm("greedy")->run(problem, termination);
+            result.algorithm = "test:greedy";
+            return result;
+        }
+    };
+    const std::size_t before = algorithmNames().size();
+    EXPECT_FALSE(isSeededAlgorithm("test:greedy"));
+    registerAlgorithm(
+        "test:greedy", [](std::uint64_t) { return std::make_unique<Renamed>(); }, false);
+    ASSERT_EQ(algorithmNames().size(), before + 1);
+    EXPECT_EQ(algorithmNames().back(), "test:greedy");
+    EXPECT_FALSE(isSeededAlgorithm("test:greedy"));
+    EXPECT_TRUE(isSeededAlgorithm("gapso"));
+    EXPECT_FALSE(isSeededAlgorithm("mckp"));
+    HarborProblem harbor;
+    const Problem problem = harbor.problem(9.0);
+    SearchOptions options;
+    options.algorithm = "test:greedy";
+    const Result renamed = runSearch(problem, options);
+    const Result greedy = makeAlgorithm("greedy")->run(problem, Termination{});
+    EXPECT_EQ(renamed.algorithm, "test:greedy");
+    EXPECT_EQ(renamed.best, greedy.best);
+    // A name already known, or an empty one, is refused.
+    EXPECT_THROW(registerAlgorithm(
+                     "test:greedy", [](std::uint64_t) { return std::make_unique<Renamed>(); }, false),
+                 std::invalid_argument);
+    EXPECT_THROW(registerAlgorithm(
+                     "gapso", [](std::uint64_t) { return std::make_unique<Renamed>(); }, true),
+                 std::invalid_argument);
+    EXPECT_THROW(registerAlgorithm(
+                     "", [](std::uint64_t) { return std::make_unique<Renamed>(); }, true),
+                 std::invalid_argument);
 }
 
 }  // namespace

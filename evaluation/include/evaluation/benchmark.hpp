@@ -3,7 +3,7 @@
 //
 //  1. algorithms × evaluation budgets (runAlgorithmGrid): every algorithm runs with every budget
 //     E (maxEvaluations = E; iterative searches also get maxIterations = max(E, 1000) so a
-//     converged swarm ends), over seeds 1..S for the stochastic ones (gapso, pso, ga, random)
+//     converged swarm ends), over seeds 1..S for the stochastic ones (gapso, pso, ga, random, pagmo's)
 //     and once for the deterministic ones. Each run records its wall time and its gap =
 //     bestKnown − fitness (fitness units, >= 0), where bestKnown is the exhaustive optimum when
 //     the space has at most `exhaustiveLimit` members, else the best fitness any run found;
@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "evaluation/search_view.hpp"
@@ -40,8 +41,18 @@ struct AlgorithmRun {
     double fitness = 0.0;  // the search's fitness of its best (the evaluator's score)
     double predictedMs = 0.0;
     std::int64_t evaluations = 0;
+    // (evaluations so far, best fitness) at the first log row and at each row where the best
+    // rose: enough to tell when the run came within a tolerance of any best known.
+    std::vector<std::pair<std::int64_t, double>> improvements;
     double gap = 0.0;  // filled once bestKnown is known
+    // Filled once bestKnown is known: the evaluations after which the run's best was within
+    // kNearBestKnown of it; -1 when it never was.
+    std::int64_t evaluationsToNearBest = -1;
 };
+
+// "Within 10⁻³ of the best known fitness" (fitness units): the tolerance of
+// AlgorithmRun::evaluationsToNearBest.
+inline constexpr double kNearBestKnown = 1e-3;
 
 struct BestKnown {
     double fitness = 0.0;
@@ -51,7 +62,7 @@ struct BestKnown {
     double seconds = 0.0;          // exhaustive's
 };
 
-// gapso, pso, ga and random: the algorithms whose answer depends on the seed.
+// The algorithms whose answer depends on the seed (optimizer::isSeededAlgorithm).
 bool isStochastic(const std::string& algorithm);
 
 // Runs every (algorithm, budget, seed) of the grid, in that order, each with `base`'s swarm
@@ -74,7 +85,7 @@ const AlgorithmRun* findRun(const std::vector<AlgorithmRun>& runs, const std::st
 BestKnown searchBestKnown(const SearchView& view, double exhaustiveLimit);
 
 // Raises best.fitness to the best of `runs` (a no-op under an exhaustive optimum) and fills
-// every run's gap.
+// every run's gap and evaluationsToNearBest.
 void applyBestKnown(BestKnown& best, std::vector<AlgorithmRun>& runs);
 
 // 2. The fast evaluation path against the full one.

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -95,11 +96,23 @@ public:
 };
 
 // Every registered name, in a stable order: gapso, pso, ga, greedy, distance, importance,
-// screensize, mckp, exhaustive, random.
+// screensize, mckp, exhaustive, random, then those added by registerAlgorithm in the order
+// they were added.
 const std::vector<std::string>& algorithmNames();
 
 // The named algorithm with its default parameters and `seed`. Throws std::invalid_argument
 // listing the valid names when `name` is unknown.
 std::unique_ptr<Algorithm> makeAlgorithm(std::string_view name, std::uint64_t seed = 1);
+
+// Whether the named algorithm's answer depends on its seed (gapso, pso, ga, random and the
+// registered ones said so); false for an unknown name.
+bool isSeededAlgorithm(std::string_view name);
+
+// Adds an algorithm from another library (the optional pagmo2 adapter, optimizer/pagmo) to
+// algorithmNames, makeAlgorithm and isSeededAlgorithm, so every command and benchmark runs it
+// like lodopt's own. Call at start-up, before any search: the registry is not guarded against
+// concurrent searches. Throws std::invalid_argument for an empty name or one already known.
+using AlgorithmMaker = std::function<std::unique_ptr<Algorithm>(std::uint64_t seed)>;
+void registerAlgorithm(const std::string& name, AlgorithmMaker make, bool seeded);
 
 }  // namespace lodopt::optimizer

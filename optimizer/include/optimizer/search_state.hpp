@@ -1,5 +1,7 @@
-// Private: the bookkeeping every algorithm shares — checked evaluation, the best feasible
-// candidate so far, the per-iteration log and the termination rules.
+// The bookkeeping every algorithm shares: checked evaluation (CheckedEvaluator's counting and
+// cache), the best feasible candidate so far, the per-iteration log and the termination rules.
+// Public so that an algorithm from another library (the pagmo2 adapter, optimizer/pagmo) counts,
+// logs and stops exactly as lodopt's own do.
 #pragma once
 
 #include <chrono>
@@ -9,7 +11,7 @@
 #include "optimizer/algorithm.hpp"
 #include "optimizer/checked_evaluator.hpp"
 
-namespace lodopt::optimizer::detail {
+namespace lodopt::optimizer {
 
 class SearchState {
 public:
@@ -67,4 +69,4 @@ Result evaluateAndFinish(SearchState& state, const Combination& combination);
 // Mean of the first `count` fitnesses of `scores` (0 when count is 0).
 double meanFitness(std::span<const Score> scores, std::size_t count);
 
-}  // namespace lodopt::optimizer::detail
+}  // namespace lodopt::optimizer
