@@ -42,8 +42,8 @@ TEST_F(OptimizeCli, WritesResultCurveAndImagesWithinTheBudget) {
     nlohmann::json printed = nlohmann::json::parse(run.output);
     nlohmann::json result = readJson(out / "result.json");
     EXPECT_EQ(printed["combination"], result["combination"]);
-    for (const char* key : {"levels", "fitness", "ssim", "boundary_entropy", "information_entropy", "precision", "recall",
-                            "predicted_ms", "budget_ms", "evaluations", "cache_hits", "skipped_objects",
+    for (const char* key : {"levels", "fitness", "ssim", "boundary_entropy", "information_entropy", "precision",
+                            "recall", "predicted_ms", "budget_ms", "evaluations", "cache_hits", "skipped_objects",
                             "setup_seconds", "evals_per_second", "wall_seconds"}) {
         EXPECT_TRUE(result.contains(key)) << key;
     }
@@ -130,6 +130,42 @@ TEST_F(OptimizeCli, CompareWritesATableForEveryAlgorithm) {
     EXPECT_TRUE(std::filesystem::exists(out / "compare.csv"));
     EXPECT_TRUE(std::filesystem::exists(out / "curves.csv"));
 }
+
+#if defined(LODOPT_WITH_PAGMO)
+// pagmo2's optimizers run through the same commands as lodopt's own (docs/peers.md).
+TEST_F(OptimizeCli, PagmoAlgorithmsRunInCompareAndBenchLikeTheToolsOwn) {
+    EXPECT_NE(runLodopt("optimize --help").output.find("pagmo:sade"), std::string::npos);
+    const auto out = dir / "compare_pagmo";
+    CommandResult run = runLodopt(std::string("compare") + kSmall +
+                                  " --budget-ms 4 --algos gapso,pagmo:sade,pagmo:sga --seeds 2 --evals 30 --out " +
+                                  out.string() + " --json");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const nlohmann::json table = nlohmann::json::parse(run.output);
+    ASSERT_EQ(table["algorithms"].size(), 3u);
+    for (const auto& row : table["algorithms"]) {
+        EXPECT_EQ(row["runs"].get<int>(), 2) << row["algorithm"];
+        EXPECT_LE(row["median_evaluations"].get<double>(), 30.0) << row["algorithm"];
+        EXPECT_LE(row["max_fitness"].get<double>(), table["best_known_fitness"].get<double>());
+    }
+    EXPECT_EQ(table["algorithms"][1]["algorithm"], "pagmo:sade");
+
+    const auto benchOut = dir / "bench_pagmo";
+    run = runLodopt(
+        "bench --scene harbor --size 64x64 --quick --threads 1 --algos mckp,pagmo:de --evals 40 --timing-frames 2 "
+        "--out " +
+        benchOut.string() + " --json");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const nlohmann::json bench = nlohmann::json::parse(run.output);
+    int deRuns = 0;
+    for (const auto& one : bench["runs"]) {
+        if (one["algorithm"] != "pagmo:de") continue;
+        ++deRuns;
+        EXPECT_LE(one["evaluations"].get<int>(), 40);
+        EXPECT_FALSE(one["improvements"].empty());
+    }
+    EXPECT_EQ(deRuns, 2);  // stochastic: every seed of --quick's two
+}
+#endif
 
 TEST_F(OptimizeCli, BadOptionsAreUsageErrors) {
     EXPECT_EQ(runLodopt("optimize --budget-ms 4 --algo magic --out " + (dir / "x").string()).exitCode, 2);
