@@ -134,7 +134,7 @@ std::pair<std::size_t, std::size_t> unitCounts(const BenchOptions& bench, const 
                                                const BenchCheckpoint& checkpoint) {
     std::size_t gridRuns = 0, done = 0;
     for (const std::string& name : grid.algorithms) {
-        const int runsHere = evaluation::isStochastic(name) ? bench.seeds : 1;
+        const int runsHere = optimizer::isSeededAlgorithm(name) ? bench.seeds : 1;
         gridRuns += grid.budgets.size() * std::size_t(runsHere);
         for (std::int64_t budget : grid.budgets) {
             for (int seed = 1; seed <= runsHere; ++seed) {

@@ -5,10 +5,6 @@
 
 namespace lodopt::evaluation {
 
-bool isStochastic(const std::string& algorithm) {
-    return optimizer::isSeededAlgorithm(algorithm);
-}
-
 std::vector<AlgorithmRun> runAlgorithmGrid(const SearchView& view, const optimizer::SearchOptions& base,
                                            const std::vector<std::string>& algorithms,
                                            const std::vector<std::int64_t>& budgets, int seeds,
@@ -25,7 +21,7 @@ std::vector<AlgorithmRun> runAlgorithmGrid(const SearchView& view, const optimiz
             options.termination.maxIterations = int(std::max<std::int64_t>(budget, 1000));
             options.termination.stableIterations = 0;
             options.termination.maxSeconds = 0.0;
-            const int runsHere = isStochastic(algorithm) ? seeds : 1;
+            const int runsHere = optimizer::isSeededAlgorithm(algorithm) ? seeds : 1;
             for (int seed = 1; seed <= runsHere; ++seed) {
                 if (const AlgorithmRun* saved = findRun(finished, algorithm, budget, std::uint64_t(seed))) {
                     runs.push_back(*saved);

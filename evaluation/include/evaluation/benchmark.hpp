@@ -3,10 +3,11 @@
 //
 //  1. algorithms × evaluation budgets (runAlgorithmGrid): every algorithm runs with every budget
 //     E (maxEvaluations = E; iterative searches also get maxIterations = max(E, 1000) so a
-//     converged swarm ends), over seeds 1..S for the stochastic ones (gapso, pso, ga, random, pagmo's)
-//     and once for the deterministic ones. Each run records its wall time and its gap =
-//     bestKnown − fitness (fitness units, >= 0), where bestKnown is the exhaustive optimum when
-//     the space has at most `exhaustiveLimit` members, else the best fitness any run found;
+//     converged swarm ends), over seeds 1..S for the seeded ones (optimizer::isSeededAlgorithm:
+//     gapso, pso, ga, random, pagmo's) and once for the others. Each run records its wall time
+//     and its gap = bestKnown − fitness (fitness units, >= 0), where bestKnown is the exhaustive
+//     optimum when the space has at most `exhaustiveLimit` members, else the best fitness any
+//     run found;
 //  2. evaluation paths (measureEvaluationPaths): the same candidates through the fast path
 //     (layers + incremental metrics, batched over threads and one at a time) and the full path
 //     (render + metrics from scratch): evaluations per second, and |fast − full| fitness;
@@ -61,9 +62,6 @@ struct BestKnown {
     std::int64_t evaluations = 0;  // exhaustive's
     double seconds = 0.0;          // exhaustive's
 };
-
-// The algorithms whose answer depends on the seed (optimizer::isSeededAlgorithm).
-bool isStochastic(const std::string& algorithm);
 
 // Runs every (algorithm, budget, seed) of the grid, in that order, each with `base`'s swarm
 // options and start (its algorithm, seed and termination are the grid's). A run found in
