@@ -137,6 +137,10 @@ auto rowsOf(const nlohmann::json& array, Read read) {
 
 }  // namespace
 
+nlohmann::json runToJson(const evaluation::AlgorithmRun& run) {
+    return toJson(run);
+}
+
 BenchCheckpoint benchFromCheckpoint(const nlohmann::json& saved) {
     BenchCheckpoint checkpoint;
     checkpoint.runs = rowsOf(saved.at("runs"), runFromJson);

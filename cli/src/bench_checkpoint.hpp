@@ -30,6 +30,10 @@ struct BenchCheckpoint {
     std::optional<TimeModelSection> timeModels;
 };
 
+// One grid run as the checkpoint saves it and bench.json's "runs" lists it (with its
+// improvement curve; NaN as null).
+nlohmann::json runToJson(const evaluation::AlgorithmRun& run);
+
 // The units of a bench checkpoint (CheckpointFile "bench", units "units").
 BenchCheckpoint benchFromCheckpoint(const nlohmann::json& saved);
 // Its units as the checkpoint's members, for CheckpointFile::save.

@@ -288,15 +288,7 @@ BenchTables writeTables(const BenchGrid& grid, const std::vector<evaluation::Alg
     // Every run with its improvement curve, so that a reader can measure it against another
     // best known (scripts/peers_table.py joins two benches of one view).
     tables.runs = nlohmann::json::array();
-    for (const evaluation::AlgorithmRun& run : runs) {
-        tables.runs.push_back({{"algorithm", run.algorithm},
-                               {"evaluation_budget", run.evaluationBudget},
-                               {"seed", run.seed},
-                               {"fitness", run.fitness},
-                               {"evaluations", run.evaluations},
-                               {"wall_seconds", run.wallSeconds},
-                               {"improvements", run.improvements}});
-    }
+    for (const evaluation::AlgorithmRun& run : runs) tables.runs.push_back(runToJson(run));
     std::ostringstream pathsCsv, metricsCsv, timeCsv;
     pathsCsv << "path,workload,mode,threads,candidates,seconds,evals_per_second,mean_abs_fitness_diff,"
                 "max_abs_fitness_diff\n";

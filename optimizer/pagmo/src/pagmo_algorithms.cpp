@@ -84,18 +84,45 @@ private:
     RunShared* mShared = nullptr;
 };
 
+// One generation per evolve call, pagmo's defaults otherwise; `memory` on where the algorithm
+// has it, so that successive calls continue one run.
 struct Entry {
     std::string name;
     bool integer;         // takes the integer encoding
-    int leastPopulation;  // pagmo's least for the algorithm
+    int leastPopulation;  // refused below this
+    pagmo::algorithm (*make)(unsigned seed);
 };
 
 const std::vector<Entry>& entries() {
     static const std::vector<Entry> list = {
-        {"pagmo:pso", false, 2},   {"pagmo:pso_gen", false, 2},
-        {"pagmo:sga", true, 2},    {"pagmo:de", false, 7},
-        {"pagmo:sade", false, 7},  {"pagmo:de1220", false, 7},
-        {"pagmo:cmaes", false, 5}, {"pagmo:simulated_annealing", false, 1},
+        {"pagmo:pso", false, 2,
+         [](unsigned seed) {
+             return pagmo::algorithm(pagmo::pso(1u, 0.7298, 2.05, 2.05, 0.5, 5u, 2u, 4u, true, seed));
+         }},
+        {"pagmo:pso_gen", false, 2,
+         [](unsigned seed) {
+             return pagmo::algorithm(pagmo::pso_gen(1u, 0.7298, 2.05, 2.05, 0.5, 5u, 2u, 4u, true, seed));
+         }},
+        {"pagmo:sga", true, 2,
+         [](unsigned seed) {
+             return pagmo::algorithm(
+                 pagmo::sga(1u, .90, 1., 0.02, 1., 2u, "exponential", "polynomial", "tournament", seed));
+         }},
+        {"pagmo:de", false, 7,
+         [](unsigned seed) { return pagmo::algorithm(pagmo::de(1u, 0.8, 0.9, 2u, 1e-6, 1e-6, seed)); }},
+        {"pagmo:sade", false, 7,
+         [](unsigned seed) { return pagmo::algorithm(pagmo::sade(1u, 2u, 1u, 1e-6, 1e-6, true, seed)); }},
+        {"pagmo:de1220", false, 7,
+         [](unsigned seed) {
+             return pagmo::algorithm(
+                 pagmo::de1220(1u, pagmo::de1220_statics<void>::allowed_variants, 1u, 1e-6, 1e-6, true, seed));
+         }},
+        {"pagmo:cmaes", false, 5,
+         [](unsigned seed) {
+             return pagmo::algorithm(pagmo::cmaes(1u, -1, -1, -1, -1, 0.5, 1e-6, 1e-6, true, false, seed));
+         }},
+        {"pagmo:simulated_annealing", false, 1,
+         [](unsigned seed) { return pagmo::algorithm(pagmo::simulated_annealing(10., .1, 10u, 1u, 20u, 1., seed)); }},
     };
     return list;
 }
@@ -107,28 +134,6 @@ const Entry& entry(std::string_view name) {
     std::string valid;
     for (const Entry& known : entries()) valid += (valid.empty() ? "" : ", ") + known.name;
     throw std::invalid_argument("unknown pagmo algorithm '" + std::string(name) + "' (valid: " + valid + ")");
-}
-
-// One generation per evolve call, pagmo's defaults otherwise; `memory` on where the algorithm
-// has it, so that successive calls continue one run.
-pagmo::algorithm makePagmoAlgorithm(std::string_view name, unsigned seed) {
-    if (name == "pagmo:pso") return pagmo::algorithm(pagmo::pso(1u, 0.7298, 2.05, 2.05, 0.5, 5u, 2u, 4u, true, seed));
-    if (name == "pagmo:pso_gen") {
-        return pagmo::algorithm(pagmo::pso_gen(1u, 0.7298, 2.05, 2.05, 0.5, 5u, 2u, 4u, true, seed));
-    }
-    if (name == "pagmo:sga") {
-        return pagmo::algorithm(pagmo::sga(1u, .90, 1., 0.02, 1., 2u, "exponential", "polynomial", "tournament", seed));
-    }
-    if (name == "pagmo:de") return pagmo::algorithm(pagmo::de(1u, 0.8, 0.9, 2u, 1e-6, 1e-6, seed));
-    if (name == "pagmo:sade") return pagmo::algorithm(pagmo::sade(1u, 2u, 1u, 1e-6, 1e-6, true, seed));
-    if (name == "pagmo:de1220") {
-        return pagmo::algorithm(
-            pagmo::de1220(1u, pagmo::de1220_statics<void>::allowed_variants, 1u, 1e-6, 1e-6, true, seed));
-    }
-    if (name == "pagmo:cmaes") {
-        return pagmo::algorithm(pagmo::cmaes(1u, -1, -1, -1, -1, 0.5, 1e-6, 1e-6, true, false, seed));
-    }
-    return pagmo::algorithm(pagmo::simulated_annealing(10., .1, 10u, 1u, 20u, 1., seed));
 }
 
 // Two 32-bit seeds from the run's (pagmo's seeds are unsigned int): population, algorithm.
@@ -161,9 +166,10 @@ PagmoAlgorithm::PagmoAlgorithm(PagmoParameters parameters) : mParameters(std::mo
 
 Result PagmoAlgorithm::run(const Problem& problem, const Termination& termination) const {
     SearchState state(problem, termination, mParameters.algorithm, true);
+    const Entry& known = entry(mParameters.algorithm);
     RunShared shared;
     shared.state = &state;
-    shared.integer = entry(mParameters.algorithm).integer;
+    shared.integer = known.integer;
     const auto [populationSeed, algorithmSeed] = pagmoSeeds(mParameters.seed);
     // The mean of this iteration's evaluations, then a fresh sum for the next.
     auto endIteration = [&] {
@@ -176,7 +182,7 @@ Result PagmoAlgorithm::run(const Problem& problem, const Termination& terminatio
         const pagmo::problem pagmoProblem{LevelProblem(&shared)};
         pagmo::population population(pagmoProblem, std::size_t(mParameters.population), populationSeed);
         if (endIteration()) return state.finish();
-        const pagmo::algorithm algorithm = makePagmoAlgorithm(mParameters.algorithm, algorithmSeed);
+        const pagmo::algorithm algorithm = known.make(algorithmSeed);
         while (true) {
             population = algorithm.evolve(population);
             if (endIteration()) return state.finish();
