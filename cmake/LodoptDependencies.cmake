@@ -101,3 +101,19 @@ else()
   set(LODOPT_WITH_PAGMO OFF)
   message(STATUS "lodopt: pagmo2 not found (libpagmo-dev): building without the pagmo:* algorithms")
 endif()
+
+# Open MPI for `mpirun -np N lodopt sweep` (cli/src/sweep_queue.cpp, docs/sweep.md). Optional:
+# without it sweep runs on one machine and with --shard. LODOPT_MPI=ON requires it (the quick
+# start's builds do, so CI cannot silently lose the MPI tests).
+option(LODOPT_MPI "Require MPI (libopenmpi-dev) for sweeps under mpirun" OFF)
+find_package(MPI QUIET COMPONENTS C)
+if(MPI_C_FOUND)
+  set(LODOPT_WITH_MPI ON)
+  find_program(LODOPT_MPIRUN NAMES mpirun mpiexec)
+  message(STATUS "lodopt: MPI ${MPI_C_VERSION} found: sweep runs under mpirun")
+elseif(LODOPT_MPI)
+  lodopt_missing(libopenmpi-dev "MPI (LODOPT_MPI=ON)")
+else()
+  set(LODOPT_WITH_MPI OFF)
+  message(STATUS "lodopt: MPI not found (libopenmpi-dev): sweep runs on one machine and in shards only")
+endif()

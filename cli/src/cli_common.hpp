@@ -82,5 +82,6 @@ void addTuneCommand(CLI::App& app);
 void addScheduleCommand(CLI::App& app);
 void addReportCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addSweepCommand(CLI::App& app);
 
 }  // namespace lodopt::cli

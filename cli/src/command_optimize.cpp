@@ -34,6 +34,10 @@ std::string curveCsv(const optimizer::Result& result) {
 void addOptimizeOptions(CLI::App& command, OptimizeOptions& options) {
     addSceneOption(command, options.scene);
     addViewOption(command, options.view, "View name, index, or 'all'");
+    addSearchOptions(command, options);
+}
+
+void addSearchOptions(CLI::App& command, OptimizeOptions& options) {
     command.add_option("--budget-ms", options.budgetMs, "Predicted render-time budget in milliseconds")
         ->required()
         ->check(CLI::PositiveNumber);

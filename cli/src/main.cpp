@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     addEstimateCommand(app);
     addOptimizeCommand(app);
     addCompareCommand(app);
+    addSweepCommand(app);
     addTuneCommand(app);
     addScheduleCommand(app);
     addReportCommand(app);

@@ -48,9 +48,7 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
     return prepared;
 }
 
-namespace {
-
-evaluation::SearchViewSettings viewSettings(const OptimizeOptions& options) {
+evaluation::SearchViewSettings searchViewSettings(const OptimizeOptions& options) {
     evaluation::SearchViewSettings settings;
     settings.path = options.evalPath == "full" ? evaluation::EvaluationPath::Full : evaluation::EvaluationPath::Fast;
     settings.threads = options.threads;
@@ -59,12 +57,10 @@ evaluation::SearchViewSettings viewSettings(const OptimizeOptions& options) {
     return settings;
 }
 
-}  // namespace
-
 evaluation::SearchView prepareView(PreparedScene& prepared, int view, const OptimizeOptions& options) {
     return evaluation::prepareSearchView(prepared.scene, prepared.scene.views[std::size_t(view)], *prepared.renderer,
                                          prepared.metrics, prepared.estimator, prepared.readFeatures,
-                                         viewSettings(options));
+                                         searchViewSettings(options));
 }
 
 std::vector<std::string> seedAlgorithms(const std::string& seedFrom) {
@@ -183,7 +179,7 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
                      std::uint64_t seed) {
     evaluation::ViewAnswer answer = evaluation::optimizeView(
         prepared.scene, prepared.scene.views[std::size_t(view)], *prepared.renderer, prepared.metrics,
-        prepared.estimator, prepared.readFeatures, viewSettings(options), searchOptions(options, algorithm, seed));
+        prepared.estimator, prepared.readFeatures, searchViewSettings(options), searchOptions(options, algorithm, seed));
     const evaluation::ViewSetup& setup = *answer.view.setup;
     const scenes::Scene& scene = prepared.scene;
     const optimizer::Result& result = answer.result;

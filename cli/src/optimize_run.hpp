@@ -57,6 +57,8 @@ struct OptimizeOptions {
 // The fill probability a swarm run with these options uses (optimizer::effectiveFillProbability).
 double effectiveFillProbability(const OptimizeOptions& options);
 void addOptimizeOptions(CLI::App& command, OptimizeOptions& options);
+// addOptimizeOptions without --view, for commands that choose their own viewpoints (sweep).
+void addSearchOptions(CLI::App& command, OptimizeOptions& options);
 // --fill alone (tune takes it without the other optimize options); its help names the defaults.
 void addFillOption(CLI::App& command, OptimizeOptions& options);
 
@@ -79,6 +81,9 @@ struct PreparedScene {
     std::unique_ptr<renderer::Renderer> renderer;
 };
 PreparedScene prepareScene(const OptimizeOptions& options);
+
+// The view preparation these options ask for (evaluation path, threads, states, budget).
+evaluation::SearchViewSettings searchViewSettings(const OptimizeOptions& options);
 
 // Everything about one view that does not depend on the algorithm (evaluation::prepareSearchView
 // with these options): reusable across runs.

@@ -17,25 +17,43 @@ std::string formatDuration(double seconds) {
     return text;
 }
 
-Progress::Progress(std::string task, std::size_t total, bool quiet)
-    : mTask(std::move(task)),
-      mTotal(total),
-      mEnabled(!quiet && std::getenv("CI") == nullptr && ::isatty(STDERR_FILENO)),
-      mStart(std::chrono::steady_clock::now()) {}
+Progress::Progress(std::string task, std::size_t total, bool quiet, Style style)
+    : mTask(std::move(task)), mTotal(total), mStart(std::chrono::steady_clock::now()) {
+    const bool terminal = ::isatty(STDERR_FILENO);
+    mEnabled = !quiet && (style == Style::Lines || (std::getenv("CI") == nullptr && terminal));
+    mLines = !terminal;
+}
 
-void Progress::step(const std::string& label) {
-    ++mDone;
+void Progress::step(const std::string& label) { update(mDone + 1, label); }
+
+void Progress::begin(std::size_t alreadyDone) {
+    mDone = mFirstDone = alreadyDone;
+    mStart = std::chrono::steady_clock::now();
+}
+
+void Progress::update(std::size_t done, const std::string& label) {
+    mDone = done;
     if (!mEnabled) return;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - mStart).count();
-    const double remaining = mDone > 0 ? elapsed / double(mDone) * double(mTotal - std::min(mDone, mTotal)) : 0.0;
-    std::fprintf(stderr, "\r\033[K%s [%zu/%zu] %3.0f%% ETA %s %s", mTask.c_str(), mDone, mTotal,
-                 mTotal ? 100.0 * double(mDone) / double(mTotal) : 100.0, formatDuration(remaining).c_str(),
-                 label.c_str());
+    const bool last = mDone >= mTotal;
+    if (mLines && !last && elapsed - mLastLine < 10.0) return;
+    mLastLine = elapsed;
+    const std::size_t thisRun = mDone - std::min(mFirstDone, mDone);
+    const double rate = elapsed > 0.0 ? double(thisRun) / elapsed : 0.0;
+    const double remaining = rate > 0.0 ? double(mTotal - std::min(mDone, mTotal)) / rate : -1.0;
+    const double percent = mTotal ? 100.0 * double(mDone) / double(mTotal) : 100.0;
+    if (mLines) {
+        std::fprintf(stderr, "%s [%zu/%zu] %3.0f%% %.2g/s ETA %s %s\n", mTask.c_str(), mDone, mTotal, percent, rate,
+                     formatDuration(remaining).c_str(), label.c_str());
+    } else {
+        std::fprintf(stderr, "\r\033[K%s [%zu/%zu] %3.0f%% ETA %s %s", mTask.c_str(), mDone, mTotal, percent,
+                     formatDuration(remaining).c_str(), label.c_str());
+    }
     std::fflush(stderr);
 }
 
 void Progress::finish() {
-    if (mEnabled) std::fprintf(stderr, "\r\033[K");
+    if (mEnabled && !mLines) std::fprintf(stderr, "\r\033[K");
 }
 
 }  // namespace lodopt::cli

@@ -10,6 +10,7 @@
 #include "visibility.hpp"
 #include "window_groups.hpp"
 #include "metrics/incremental_evaluator.hpp"
+#include "scenes/viewpoints.hpp"
 
 namespace lodopt::evaluation {
 
@@ -440,7 +441,6 @@ std::vector<optimizer::VariableHints> computeHints(const ViewSetup& setup) {
     const scenes::Scene& scene = setup.scene();
     const scenes::Camera& camera = setup.camera();
     const glm::vec3 viewDirection = glm::normalize(camera.target - camera.position);
-    const double tanHalfFov = std::tan(glm::radians(double(camera.fovYDegrees)) / 2.0);
     std::vector<optimizer::VariableHints> hints;
     for (int object : setup.variableObjects()) {
         const scenes::Object& sceneObject = scene.objects[object];
@@ -453,9 +453,7 @@ std::vector<optimizer::VariableHints> computeHints(const ViewSetup& setup) {
         hint.viewAngleRadians = std::min(std::acos(std::clamp(cosine, -1.0, 1.0)), 1.5);
         // Dong et al.'s s: the projected area, here in hundreds of covered pixels at level 0.
         hint.projectedArea = std::max(double(setup.objects()[object].referencePixels) / 100.0, 1e-3);
-        // Bounding-sphere diameter over the viewport height (what engines call screen size).
-        const double pixelsPerUnit = double(setup.height()) / (2.0 * distance * tanHalfFov);
-        hint.screenCoverage = 2.0 * bounds.sphereRadius * pixelsPerUnit / double(setup.height());
+        hint.screenCoverage = scenes::screenSize(bounds, camera);
         const std::vector<int>& options = setup.objects()[object].optionLevels;
         bool allCoverage = true;
         for (int level : options) allCoverage = allCoverage && sceneObject.levels[level].screenCoverage.has_value();
@@ -469,7 +467,8 @@ std::vector<optimizer::VariableHints> computeHints(const ViewSetup& setup) {
             if (relativeError <= 0.0 && level > 0) {
                 relativeError = 0.25 * (1.0 - std::sqrt(double(sceneLevel.stats.triangles) / triangles0));
             }
-            hint.levelPixelError.push_back(std::max(relativeError, 0.0) * 2.0 * bounds.sphereRadius * pixelsPerUnit);
+            // The object's diameter on screen in pixels is its screen size times the viewport height.
+            hint.levelPixelError.push_back(std::max(relativeError, 0.0) * hint.screenCoverage * double(setup.height()));
         }
         hints.push_back(std::move(hint));
     }
