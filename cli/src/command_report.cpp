@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum class Kind { Optimize, Compare, Schedule, Tune, Profile, Bench };
+enum class Kind { Optimize, Compare, Schedule, Tune, Profile, Bench, Sweep };
 
 const char* kindName(Kind kind) {
     switch (kind) {
@@ -37,6 +37,8 @@ const char* kindName(Kind kind) {
             return "calibrate";
         case Kind::Bench:
             return "bench";
+        case Kind::Sweep:
+            return "sweep";
     }
     return "?";
 }
@@ -55,7 +57,8 @@ bool isKnownFile(const std::string& name) {
     static const std::vector<std::string> kKnown = {
         "result.json", "curve.csv",        "optimized.png",  "reference.png",   "compare.json", "compare.csv",
         "curves.csv",  "frames.csv",       "summary.json",   "report.html",     kBenchJson,     kBenchAlgorithmsCsv,
-        kBenchRunsCsv, kBenchEvalPathsCsv, kBenchMetricsCsv, kBenchTimeModelCsv};
+        kBenchRunsCsv, kBenchEvalPathsCsv, kBenchMetricsCsv, kBenchTimeModelCsv, "sweep.json", "sweep.csv",
+        "sweep_timing.csv", "sweep.plan.json", "sweep_run.json"};
     return std::find(kKnown.begin(), kKnown.end(), name) != kKnown.end() || name.rfind("bench_pareto", 0) == 0 ||
            name.rfind(".", 0) == 0;
 }
@@ -88,6 +91,8 @@ void scanFolder(const fs::path& folder, int depth, const fs::path& skip, std::ve
         found.push_back({Kind::Compare, folder});
     if (fs::exists(folder / kBenchJson)) found.push_back({Kind::Bench, folder});
     if (fs::exists(folder / "frames.csv")) found.push_back({Kind::Schedule, folder / "frames.csv"});
+    if (fs::exists(folder / "sweep.json")) found.push_back({Kind::Sweep, folder});
+    const bool sweepFolder = fs::exists(folder / "sweep.plan.json");
     std::vector<fs::path> entries;
     for (const fs::directory_entry& entry : fs::directory_iterator(folder)) entries.push_back(entry.path());
     std::sort(entries.begin(), entries.end());
@@ -96,7 +101,10 @@ void scanFolder(const fs::path& folder, int depth, const fs::path& skip, std::ve
         if (fs::is_directory(entry)) {
             // The report's own plot folder and tune's per-view checkpoints are not inputs.
             std::error_code ignored;
-            if (fs::equivalent(entry, skip, ignored) || endsWith(name, "_views") || endsWith(name, "_files")) continue;
+            // A sweep's per-view files are what sweep.json merges.
+            if (fs::equivalent(entry, skip, ignored) || endsWith(name, "_views") || endsWith(name, "_files") ||
+                (sweepFolder && name == "views"))
+                continue;
             if (depth < 2) scanFolder(entry, depth + 1, skip, found, other);
             continue;
         }
@@ -133,6 +141,8 @@ std::vector<Found> findOutputs(const fs::path& input, const fs::path& plotDir, s
         found.push_back({Kind::Optimize, input.parent_path()});
     } else if (input.filename() == "compare.json" || input.filename() == "curves.csv") {
         found.push_back({Kind::Compare, input.parent_path()});
+    } else if (input.filename() == "sweep.json") {
+        found.push_back({Kind::Sweep, input.parent_path()});
     } else if (input.filename() == kBenchJson) {
         found.push_back({Kind::Bench, input.parent_path()});
     } else if (input.extension() == ".csv") {
@@ -140,12 +150,12 @@ std::vector<Found> findOutputs(const fs::path& input, const fs::path& plotDir, s
     } else if (input.extension() != ".json" || !classifyJson(input, found)) {
         throw UsageError(name +
                          ": not an output lodopt report knows (a folder of optimize, compare, "
-                         "schedule or bench, a tune coefficients file or a calibrate profile)");
+                         "schedule, bench or sweep, a tune coefficients file or a calibrate profile)");
     }
     if (found.empty()) {
         throw UsageError(name +
                          ": no output of optimize (result.json), compare (compare.json), schedule "
-                         "(frames.csv), bench (bench.json), tune or calibrate found");
+                         "(frames.csv), bench (bench.json), sweep (sweep.json), tune or calibrate found");
     }
     return found;
 }
@@ -169,6 +179,9 @@ void addSection(ReportContext& context, const Found& item) {
             break;
         case Kind::Profile:
             addProfileSection(context, item.path);
+            break;
+        case Kind::Sweep:
+            addSweepSection(context, item.path);
             break;
     }
 }

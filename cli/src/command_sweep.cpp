@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <thread>
 #include <filesystem>
@@ -23,6 +24,7 @@
 #include "interrupt.hpp"
 #include "optimize_run.hpp"
 #include "progress.hpp"
+#include "report_data.hpp"
 #include "schedule_common.hpp"
 #include "scenes/atomic_file.hpp"
 #include "scenes/viewpoints.hpp"
@@ -45,6 +47,9 @@ struct SweepOptions {
     bool resume = false;
     std::string shard;
     std::vector<std::string> merge;
+    std::string scaling;                      // a finished sweep folder to model the ranks of
+    std::string scalingRanks = "1,2,4,8,16,32,64";
+    long scalingViews = 0;                    // 0: the folder's view count
 };
 
 // The options that change a view's answer (checkIdentity); the cameras are in the plan itself.
@@ -204,12 +209,12 @@ SweepRun runViews(const SweepOptions& o, PreparedScene& prepared, const SweepPla
                 evaluation::sweepView(prepared.scene, camera, *prepared.renderer, prepared.metrics,
                                       prepared.estimator, prepared.readFeatures, settings, search);
             if (run.computed == 0) holdForTest(out, queue.rank());
-            writeJsonFile(viewPath(out, *view).string(), viewJson(plan, *view, outcome, queue.rank()));
+            writeSweepJson(viewPath(out, *view), viewJson(plan, *view, outcome, queue.rank()));
             ++run.computed;
         }
         const std::size_t done = queue.finished();
         if (reports) progress.update(done, camera.name);
-        if (queue.ranks() == 1) pollInterrupt("sweep", done, total, "view", (out / "views").string());
+        pollInterrupt("sweep", done, total, "view", (out / "views").string());
     }
     progress.finish();
     return run;
@@ -266,14 +271,75 @@ void runMerge(const SweepOptions& o, const OutputOptions& output) {
     printSummary(summary, output.json);
 }
 
+// The work queue replayed (evaluation::simulateWorkQueue) from a finished one-rank sweep's
+// measured per-view times, cycled to --scaling-views views: scene load once per rank, the
+// per-view overhead the one-rank run measured beyond its views' own seconds, and the merge
+// scaled with the view count.
+void runScaling(const SweepOptions& o, const OutputOptions& output) {
+    const std::filesystem::path folder(o.scaling);
+    const CsvTable timing = readCsv((folder / "sweep_timing.csv").string());
+    const nlohmann::json measured = readJsonFile((folder / "sweep_run.json").string());
+    std::vector<double> measuredViews;
+    for (std::size_t r = 0; r < timing.rows.size(); ++r) {
+        measuredViews.push_back(timing.number(r, "setup_seconds") + timing.number(r, "search_seconds"));
+    }
+    if (measuredViews.empty()) throw UsageError(folder.string() + "/sweep_timing.csv: no views");
+    const int measuredRanks = measured.value("ranks", 1);
+    const double sceneSeconds = measured.value("scene_seconds", 0.0);
+    const double wall = measured.value("wall_seconds", 0.0);
+    const double mergeSeconds = measured.value("merge_seconds", 0.0);
+    double work = 0.0;
+    for (double v : measuredViews) work += v;
+    // Queue, file writing and the progress line, per view: only a one-rank run separates them.
+    const double overhead = measuredRanks == 1 && measured.value("resumed_by_rank0", 0) == 0
+                                ? std::max(0.0, (wall - sceneSeconds - mergeSeconds - work) / double(measuredViews.size()))
+                                : 0.0;
+    const std::size_t views = o.scalingViews > 0 ? std::size_t(o.scalingViews) : measuredViews.size();
+    std::vector<double> cycled(views);
+    for (std::size_t k = 0; k < views; ++k) cycled[k] = measuredViews[k % measuredViews.size()];
+    const double merge = mergeSeconds * double(views) / double(measuredViews.size());
+    nlohmann::json rows = nlohmann::json::array();
+    for (int ranks : parseIntList(o.scalingRanks, "--scaling-ranks")) {
+        if (ranks < 1) throw UsageError("--scaling-ranks: every count must be >= 1");
+        const evaluation::QueueSimulation sim = evaluation::simulateWorkQueue(cycled, ranks, sceneSeconds, overhead, merge);
+        double idle = 0.0;
+        for (double seconds : sim.idleSeconds) idle += seconds;
+        rows.push_back({{"ranks", ranks},
+                        {"makespan_seconds", sim.makespanSeconds},
+                        {"efficiency", sim.efficiency},
+                        {"mean_idle_seconds", idle / double(ranks)},
+                        {"scene_share", sceneSeconds / sim.makespanSeconds},
+                        {"merge_share", merge / sim.makespanSeconds}});
+    }
+    const nlohmann::json document = {{"from", folder.string()},   {"measured_views", measuredViews.size()},
+                                     {"measured_ranks", measuredRanks}, {"views", views},
+                                     {"scene_seconds", sceneSeconds}, {"per_view_overhead_seconds", overhead},
+                                     {"merge_seconds", merge},        {"simulated", rows}};
+    if (output.json) return printJson(document);
+    const Summary spread = summarize(measuredViews);
+    std::cout << "sweep scaling (work queue replayed from " << measuredViews.size() << " measured views of "
+              << folder.string() << ", cycled to " << views << "): view seconds median " << spread.median << ", min "
+              << spread.min << ", max " << spread.max << "; scene load " << sceneSeconds << " s per rank, overhead "
+              << overhead << " s per view, merge " << merge << " s\n";
+    std::cout << "ranks  makespan s  efficiency  mean idle s  scene share  merge share\n";
+    for (const nlohmann::json& row : rows) {
+        std::printf("%5d  %10.1f  %10.3f  %11.1f  %11.3f  %11.3f\n", row["ranks"].get<int>(),
+                    row["makespan_seconds"].get<double>(), row["efficiency"].get<double>(),
+                    row["mean_idle_seconds"].get<double>(), row["scene_share"].get<double>(),
+                    row["merge_share"].get<double>());
+    }
+}
+
 void runSweep(SweepOptions o, const OutputOptions& output) {
     if (!o.merge.empty()) return runMerge(o, output);
+    if (!o.scaling.empty()) return runScaling(o, output);
     checkAlgorithmName(o.optimize.algorithm);
     const bool mpi = launchedByMpi();
     if (mpi && !o.shard.empty()) throw UsageError("--shard: not under mpirun (the ranks already share the views)");
     if (mpi && !builtWithMpi()) {
         throw UsageError("this lodopt was built without MPI (libopenmpi-dev): run it without mpirun, or use --shard");
     }
+    if (!o.shard.empty()) makeShardQueue(0, o.shard);  // a bad spec is refused before anything is written
     const auto start = std::chrono::steady_clock::now();
     o.optimize.view = "0";
     PreparedScene prepared = prepareScene(o.optimize);
@@ -281,6 +347,7 @@ void runSweep(SweepOptions o, const OutputOptions& output) {
     plan.settings = settingsSignature(o);
     for (const scenes::Object& object : prepared.scene.objects) plan.objects.push_back(object.name);
     plan.cameras = sweepCameras(prepared.scene, o);
+    const double sceneSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const bool clear = checkOutFolder(o, plan);  // every rank, before any writes
 
     std::unique_ptr<MpiSession> session;
@@ -292,7 +359,7 @@ void runSweep(SweepOptions o, const OutputOptions& output) {
                 for (std::size_t view : savedViews(o.out)) std::filesystem::remove(viewPath(o.out, view));
                 std::filesystem::remove(std::filesystem::path(o.out) / "sweep.json");
             }
-            writeJsonFile((std::filesystem::path(o.out) / "sweep.plan.json").string(), planJson(plan));
+            writeSweepJson(std::filesystem::path(o.out) / "sweep.plan.json", planJson(plan));
         }
         std::unique_ptr<ViewQueue> queue = session ? session->makeQueue(plan.cameras.size())
                                            : o.shard.empty() ? makeLocalQueue(plan.cameras.size())
@@ -308,8 +375,23 @@ void runSweep(SweepOptions o, const OutputOptions& output) {
             }
             return;
         }
-        const MergeSummary merged = mergeViews(plan, {std::filesystem::path(o.out)}, o.out);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const auto mergeStart = std::chrono::steady_clock::now();
+        MergeSummary merged = mergeViews(plan, {std::filesystem::path(o.out)}, o.out);
+        const auto end = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(end - start).count();
+        // How this run spent its time, for `sweep --scaling` (not part of the merged table).
+        const std::filesystem::path runFile = std::filesystem::path(o.out) / "sweep_run.json";
+        writeJsonFile(runFile.string(), {{"format", "lodopt-sweep-run"},
+                                         {"version", 1},
+                                         {"ranks", queue->ranks()},
+                                         {"threads", o.optimize.threads},
+                                         {"views", plan.cameras.size()},
+                                         {"computed_by_rank0", run.computed},
+                                         {"resumed_by_rank0", run.resumed},
+                                         {"scene_seconds", sceneSeconds},
+                                         {"merge_seconds", std::chrono::duration<double>(end - mergeStart).count()},
+                                         {"wall_seconds", seconds}});
+        merged.files.push_back(runFile.string());
         printSummary(summaryJson(o, plan, merged, queue->ranks(), run, seconds), output.json);
     } catch (const Interrupted& interrupted) {
         if (!session) throw;
@@ -356,10 +438,16 @@ void addSweepCommand(CLI::App& app) {
     command->add_option("--shard", options->shard, "Run only views i, i+N, ... (i/N), for job arrays without MPI");
     command->add_option("--merge", options->merge, "Merge the view files of these sweep folders into --out")
         ->expected(1, -1);
+    command->add_option("--scaling", options->scaling,
+                        "Model the work queue at other rank counts from this finished sweep's measured view times");
+    command->add_option("--scaling-ranks", options->scalingRanks, "Rank counts to model (--scaling)")
+        ->capture_default_str();
+    command->add_option("--scaling-views", options->scalingViews, "Views to model, cycling the measured ones (--scaling)")
+        ->check(CLI::Range(1L, 100000000L));
     addOutputOptions(*command, *output);
     command->callback([options, output] {
-        if (options->merge.empty() && !(options->optimize.budgetMs > 0.0)) {
-            throw UsageError("sweep: --budget-ms is required (except with --merge)");
+        if (options->merge.empty() && options->scaling.empty() && !(options->optimize.budgetMs > 0.0)) {
+            throw UsageError("sweep: --budget-ms is required (except with --merge or --scaling)");
         }
         runSweep(*options, *output);
     });

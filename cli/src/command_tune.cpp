@@ -34,6 +34,7 @@
 #include "optimize_run.hpp"
 #include "progress.hpp"
 #include "schedule_common.hpp"
+#include "sweep_files.hpp"
 #include "scheduler/coefficients.hpp"
 #include "scheduler/tuning.hpp"
 #include "time_profile.hpp"
@@ -55,6 +56,7 @@ struct TuneOptions {
     std::string select = "tuning";
     int folds = 3;
     bool resume = false;
+    std::string from;  // a sweep folder whose answers replace the per-view searches
 };
 
 // The options that change a view's optimizer answer, keyed by option name (checkIdentity).
@@ -135,10 +137,12 @@ nlohmann::json coefficientsJson(const scheduler::SchedulerCoefficients& c) {
     return nlohmann::json::parse(scheduler::coefficientsToJson(c));
 }
 
-// Each view's optimizer answer, from its checkpoint with --resume (`resumed`) or searched and
-// checkpointed; then its cost and the answer's fitness by the view's evaluator.
+// Each view's optimizer answer: given (a sweep's, `given` non-empty), from its checkpoint with
+// --resume (`resumed`), or searched and checkpointed; then its cost and the answer's fitness by
+// the view's evaluator.
 void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vector<evaluation::TuningView>& views,
-                  std::vector<bool>& resumed, const OutputOptions& output) {
+                  const std::vector<scenes::Combination>& given, std::vector<bool>& resumed,
+                  const OutputOptions& output) {
     const std::filesystem::path dir = checkpointDir(options.out);
     const nlohmann::json signature = settingsSignature(options);
     Progress progress("tune: optimizer per view", views.size(), output.quiet);
@@ -150,7 +154,14 @@ void prepareViews(const TuneOptions& options, PreparedScene& prepared, std::vect
         const std::filesystem::path checkpoint = dir / name.str();
         prepared.scene.views.push_back(view.camera);
         const int viewIndex = int(prepared.scene.views.size()) - 1;
-        if (options.resume && std::filesystem::exists(checkpoint)) {
+        if (!given.empty()) {
+            view.optimizerLevels = given[k];
+            scenes::validateCombination(prepared.scene, view.optimizerLevels);
+            view.setup = std::make_unique<evaluation::ViewSetup>(prepared.scene, view.camera, *prepared.renderer);
+            view.evaluator = std::make_unique<evaluation::LayerEvaluator>(
+                *view.setup, evaluation::searchParameters(prepared.metrics), options.optimize.threads,
+                evaluation::DirtyRegions::ChangedPixels, options.optimize.evalStates);
+        } else if (options.resume && std::filesystem::exists(checkpoint)) {
             std::ifstream file(checkpoint);
             std::ostringstream text;
             text << file.rdbuf();
@@ -313,6 +324,7 @@ nlohmann::json tuneReport(const TuneRun& run, nlohmann::json perView) {
         {"views", options.views},
         {"held_out_views", run.holdout},
         {"path", options.path},
+        {"from", options.from},
         {"algorithm", options.optimize.algorithm},
         {"optimizer_evals", options.optimize.maxEvaluations},
         {"time_model", run.timeModel},
@@ -371,8 +383,37 @@ void printTune(const TuneRun& run) {
     std::cout.unsetf(std::ios::floatfield);
 }
 
+// The cameras and answers of a sweep (--from), its feasible views only (where even the coarsest
+// combination is over the budget there is nothing to trade). The sweep must have been made with
+// the options that change a view's evaluator and cost.
+std::vector<scenes::Camera> sweepAnswers(const TuneOptions& options, std::vector<scenes::Combination>& given) {
+    const SweepTable table = readSweepTable(options.from);
+    const OptimizeOptions& o = options.optimize;
+    checkSweepSettings(options.from, table,
+                       {{"scene", o.scene}, {"scene-seed", o.sceneSeed}, {"size", o.size}, {"shading", o.shading},
+                        {"budget-ms", o.budgetMs}, {"weights", o.weights}, {"profile", o.profile}, {"model", o.model}});
+    std::vector<scenes::Camera> cameras;
+    for (const SweepTableView& view : table.views) {
+        if (!view.feasible) continue;
+        cameras.push_back(view.camera);
+        given.push_back(view.levels);
+    }
+    return cameras;
+}
+
 void runTune(TuneOptions options, const OutputOptions& output) {
     checkAlgorithmName(options.optimize.algorithm);
+    std::vector<scenes::Combination> given;
+    std::vector<scenes::Camera> sweepCameras;
+    if (!options.from.empty()) {
+        if (!options.path.empty()) throw UsageError("tune: --from takes the sweep's views; drop --path");
+        sweepCameras = sweepAnswers(options, given);
+        options.views = int(sweepCameras.size());
+        if (options.views < 2) {
+            throw UsageError("--from " + options.from + ": " + std::to_string(options.views) +
+                             " feasible view(s); tuning needs at least 2");
+        }
+    }
     if (options.views < 2) throw UsageError("--view-count: at least 2 (tuning and held-out views)");
     TuneRun run(options);
     run.holdout = options.holdout > 0 ? options.holdout : std::max(1, options.views / 4);
@@ -387,7 +428,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
         std::cerr << "lodopt: warning: --select cv needs at least 2 tuning views (this run has "
                   << options.views - run.holdout << "); choosing by the tuning score\n";
     }
-    refuseExistingCheckpoints(options);
+    if (options.from.empty()) refuseExistingCheckpoints(options);
     const auto start = std::chrono::steady_clock::now();
     options.optimize.view = "0";
     // One evaluator per view stays alive for the whole run: one state per thread, not the
@@ -396,9 +437,10 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     PreparedScene prepared = prepareScene(options.optimize);
     run.sceneName = prepared.scene.name;
     run.timeModel = prepared.timeModelName;
-    std::vector<evaluation::TuningView> views = assignViews(sampleCameras(prepared.scene, options), run);
+    std::vector<evaluation::TuningView> views =
+        assignViews(options.from.empty() ? sampleCameras(prepared.scene, options) : sweepCameras, run);
     std::vector<bool> resumed(views.size(), false);
-    prepareViews(options, prepared, views, resumed, output);
+    prepareViews(options, prepared, views, given, resumed, output);
 
     run.mode = parseFeatureMode(options.features);
     run.organisation = parseOrganisation(options.organisation);
@@ -448,6 +490,8 @@ void addTuneCommand(CLI::App& app) {
         ->check(CLI::Range(2, 100000))
         ->capture_default_str();
     command->add_option("--path", options->path, "Take the views from a camera path (name or JSON file)");
+    command->add_option("--from", options->from,
+                        "Take the views and the optimizer's answers from a sweep folder (lodopt sweep)");
     command->add_option("--budget-ms", o.budgetMs, "Predicted render-time budget in milliseconds")
         ->required()
         ->check(CLI::PositiveNumber);

@@ -8,7 +8,9 @@
 //             the budget, decision time, switches, and the levels histogram over frames;
 //   tune      a coefficients file with a "tuning" object: scheduler vs optimizer fitness per view;
 //   calibrate a device profile: error per time model, predicted against measured per sample;
-//   bench     bench.json and its CSVs (report_bench.hpp).
+//   bench     bench.json and its CSVs (report_bench.hpp);
+//   sweep     sweep.json (+ sweep_timing.csv): fitness and predicted time per view, the chosen
+//             level against screen size over every object and view, views per rank.
 // Each function reads its files (bad content → UsageError naming the file), writes its plots
 // through the Plotter and appends HTML. A missing optional file leaves out what needs it.
 #pragma once
@@ -45,6 +47,7 @@ void addCompareSection(ReportContext& context, const std::filesystem::path& fold
 void addScheduleSection(ReportContext& context, const std::filesystem::path& framesCsv);
 void addTuneSection(ReportContext& context, const std::filesystem::path& file, const nlohmann::json& document);
 void addProfileSection(ReportContext& context, const std::filesystem::path& file);
+void addSweepSection(ReportContext& context, const std::filesystem::path& folder);
 
 // Top-level scalars of `document` (and one level of nested objects as "outer.inner") as table
 // rows, for summary files whose fields the report does not know one by one.

@@ -50,6 +50,10 @@ std::string csvField(const std::string& text) {
 
 }  // namespace
 
+void writeSweepJson(const std::filesystem::path& path, const nlohmann::json& document) {
+    scenes::writeTextAtomically(path.string(), document.dump() + "\n");
+}
+
 nlohmann::json planJson(const SweepPlan& plan) {
     nlohmann::json cameras = nlohmann::json::array();
     for (const scenes::Camera& camera : plan.cameras) cameras.push_back(cameraToJson(camera));
@@ -216,14 +220,60 @@ MergeSummary mergeViews(const SweepPlan& plan, const std::vector<std::filesystem
         outIsSource = outIsSource || std::filesystem::weakly_canonical(source) == std::filesystem::weakly_canonical(out);
     }
     if (!outIsSource) {
-        writeJsonFile((out / "sweep.plan.json").string(), planJson(plan));
+        writeSweepJson(out / "sweep.plan.json", planJson(plan));
         summary.files.push_back((out / "sweep.plan.json").string());
     }
-    writeJsonFile((out / "sweep.json").string(), document);
+    writeSweepJson(out / "sweep.json", document);
     scenes::writeTextAtomically((out / "sweep.csv").string(), csv.str());
     scenes::writeTextAtomically((out / "sweep_timing.csv").string(), timing.str());
     for (const char* name : {"sweep.json", "sweep.csv", "sweep_timing.csv"}) summary.files.push_back((out / name).string());
     return summary;
+}
+
+SweepTable readSweepTable(const std::filesystem::path& folderOrFile) {
+    const std::filesystem::path path =
+        std::filesystem::is_directory(folderOrFile) ? folderOrFile / "sweep.json" : folderOrFile;
+    if (!std::filesystem::exists(path)) {
+        throw UsageError(path.string() + ": no merged sweep (run lodopt sweep to the end, or sweep --merge)");
+    }
+    const nlohmann::json json = readJsonOrThrow(path, "merged sweep");
+    if (json.value("format", "") != "lodopt-sweep" || json.value("version", 0) != 1 || !json.contains("settings") ||
+        !json.contains("objects") || !json.contains("views") || !json["views"].is_array()) {
+        throw UsageError(path.string() + ": not a merged lodopt sweep (format lodopt-sweep, version 1)");
+    }
+    SweepTable table;
+    table.settings = json["settings"];
+    table.objects = json["objects"].get<std::vector<std::string>>();
+    for (std::size_t k = 0; k < json["views"].size(); ++k) {
+        const nlohmann::json& view = json["views"][k];
+        const std::string where = path.string() + ": views[" + std::to_string(k) + "]";
+        SweepTableView row;
+        try {
+            row.camera = cameraFromJson(view.at("camera"), where + ".camera");
+            row.levels = view.at("levels").get<scenes::Combination>();
+            row.feasible = view.value("feasible", true);
+            row.fitness = view.at("fitness").get<double>();
+            row.predictedMs = view.at("predicted_ms").get<double>();
+            row.screenSizes = view.at("screen_sizes").get<std::vector<double>>();
+        } catch (const nlohmann::json::exception& error) {
+            throw UsageError(where + ": " + error.what());
+        }
+        if (row.levels.size() != table.objects.size() || row.screenSizes.size() != table.objects.size()) {
+            throw UsageError(where + ": levels and screen_sizes need one entry per object (" +
+                             std::to_string(table.objects.size()) + ")");
+        }
+        table.views.push_back(std::move(row));
+    }
+    return table;
+}
+
+void checkSweepSettings(const std::string& where, const SweepTable& table, const nlohmann::json& options) {
+    for (auto it = options.begin(); it != options.end(); ++it) {
+        if (table.settings.contains(it.key()) && table.settings[it.key()] == it.value()) continue;
+        throw UsageError(where + ": the sweep was made with --" + it.key() + " " +
+                         (table.settings.contains(it.key()) ? table.settings[it.key()].dump() : "(unset)") +
+                         ", this run has " + it.value().dump() + "; use the sweep's value");
+    }
 }
 
 }  // namespace lodopt::cli

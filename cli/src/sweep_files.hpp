@@ -27,6 +27,10 @@ struct SweepPlan {
     std::vector<scenes::Camera> cameras;
 };
 
+// A sweep's JSON files are written compact (one line): a 10,000-view table of a city with
+// hundreds of objects per view is several times smaller than pretty-printed.
+void writeSweepJson(const std::filesystem::path& path, const nlohmann::json& document);
+
 nlohmann::json planJson(const SweepPlan& plan);
 // Throws UsageError naming the file and what is wrong.
 SweepPlan readPlan(const std::filesystem::path& folder);
@@ -53,5 +57,25 @@ struct MergeSummary {
 // Throws UsageError naming the missing views when some have no file.
 MergeSummary mergeViews(const SweepPlan& plan, const std::vector<std::filesystem::path>& sources,
                         const std::filesystem::path& out);
+
+// A merged sweep as its consumers (tune, report) read it.
+struct SweepTableView {
+    scenes::Camera camera;
+    scenes::Combination levels;
+    bool feasible = true;
+    double fitness = 0.0;
+    double predictedMs = 0.0;
+    std::vector<double> screenSizes;
+};
+struct SweepTable {
+    nlohmann::json settings;
+    std::vector<std::string> objects;
+    std::vector<SweepTableView> views;
+};
+// `folder`/sweep.json (or a sweep.json path). Throws UsageError naming the file and element.
+SweepTable readSweepTable(const std::filesystem::path& folderOrFile);
+// Throws UsageError naming the first of `options` (option name -> this run's value) that the
+// sweep was made with another value.
+void checkSweepSettings(const std::string& where, const SweepTable& table, const nlohmann::json& options);
 
 }  // namespace lodopt::cli

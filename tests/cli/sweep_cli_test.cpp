@@ -233,3 +233,40 @@ TEST(SweepMpi, BuiltWithMpiInCi) {
 
 }  // namespace
 }  // namespace lodopt::cli_test
+
+namespace lodopt::cli_test {
+namespace {
+
+TEST(SweepCli, TuneAndReportTakeAFinishedSweep) {
+    SweepFolders folders;
+    referenceSweep(folders);
+    const nlohmann::json sweep = readJson(folders / "one/sweep.json");
+    int feasible = 0;
+    for (const nlohmann::json& view : sweep["views"]) feasible += view["feasible"].get<bool>() ? 1 : 0;
+    const CommandResult tune = runLodopt("tune --scene harbor --budget-ms 0.3285 --size 64x64 --search-evals 10 --from " +
+                                         (folders / "one") + " --out " + (folders / "coeffs.json") + " --json --quiet");
+    ASSERT_EQ(tune.exitCode, 0) << tune.output;
+    const nlohmann::json report = nlohmann::json::parse(tune.output);
+    EXPECT_EQ(report["from"], folders / "one");
+    EXPECT_EQ(report["per_view"].size(), std::size_t(feasible));  // infeasible views left out
+    // The optimizer's answers are the sweep's: the first feasible view's fitness by tune's evaluator
+    // is the sweep's search of the same camera (both score the same levels at the same size).
+    EXPECT_GT(report["per_view"][0]["optimizer_fitness"].get<double>(), 0.0);
+    // A sweep made under another budget is refused, naming the option.
+    const Exit other = runLodoptChild(splitWords("tune --scene harbor --budget-ms 0.4 --size 64x64 --from " +
+                                                 (folders / "one") + " --out " + (folders / "c2.json")),
+                                      "/dev/null", folders / "err.txt");
+    EXPECT_EQ(other.code, 2);
+    EXPECT_NE(other.err.find("--budget-ms"), std::string::npos) << other.err;
+
+    const CommandResult page = runLodopt("report " + (folders / "one") + " --out " + (folders / "page.html"),
+                                         "LODOPT_GNUPLOT=none");
+    ASSERT_EQ(page.exitCode, 0);
+    const std::string html = slurp(folders / "page.html");
+    EXPECT_NE(html.find("sweep: harbor"), std::string::npos);
+    EXPECT_NE(html.find("min screen size"), std::string::npos);  // the table beside the level plot
+    EXPECT_EQ(html.find("view_000000.json"), std::string::npos);  // view files are not listed as inputs
+}
+
+}  // namespace
+}  // namespace lodopt::cli_test
