@@ -17,6 +17,7 @@ SweepViewOutcome sweepView(const scenes::Scene& scene, const scenes::Camera& cam
                            const timemodel::FeatureSet& readFeatures, const SearchViewSettings& settings,
                            const optimizer::SearchOptions& search) {
     using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
     SweepViewOutcome outcome;
     try {
         ViewAnswer answer = optimizeView(scene, camera, renderer, metrics, estimator, readFeatures, settings, search);
@@ -26,9 +27,9 @@ SweepViewOutcome sweepView(const scenes::Scene& scene, const scenes::Camera& cam
         outcome.searchedObjects = int(answer.view.problem.levelCounts.size());
         outcome.evaluations = answer.result.evaluations;
         outcome.setupSeconds = answer.setupSeconds;
-        outcome.searchSeconds = answer.searchSeconds;
+        // The search and the answer's full render and scoring.
+        outcome.searchSeconds = std::chrono::duration<double>(Clock::now() - start).count() - answer.setupSeconds;
     } catch (const optimizer::BudgetError& error) {
-        const auto start = Clock::now();
         const ViewSetup setup(scene, camera, renderer);
         outcome.feasible = false;
         outcome.levels = scenes::coarsestCombination(scene);
@@ -75,9 +76,10 @@ QueueSimulation simulateWorkQueue(std::span<const double> viewSeconds, int ranks
     for (int rank = 0; rank < ranks; ++rank) {
         simulation.idleSeconds[std::size_t(rank)] = simulation.makespanSeconds - busy[std::size_t(rank)];
     }
-    simulation.efficiency = simulation.makespanSeconds > 0.0
-                                ? simulation.workSeconds / (double(ranks) * simulation.makespanSeconds)
-                                : 1.0;
+    const double oneRank = startSeconds + simulation.workSeconds +
+                           perViewOverheadSeconds * double(viewSeconds.size()) + mergeSeconds;
+    simulation.efficiency =
+        simulation.makespanSeconds > 0.0 ? oneRank / (double(ranks) * simulation.makespanSeconds) : 1.0;
     return simulation;
 }
 

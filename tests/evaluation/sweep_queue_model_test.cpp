@@ -28,13 +28,15 @@ TEST(WorkQueueModel, HandsEachViewToTheFirstFreeRank) {
 }
 
 TEST(WorkQueueModel, StartupOverheadAndMergeCountAgainstEfficiency) {
-    // 4 views of 1 s on 4 ranks, 1 s scene load, 0.5 s per view, 0.5 s merge: 1 + 1.5 + 0.5 = 3 s.
+    // 4 views of 1 s on 4 ranks, 1 s scene load, 0.5 s per view, 0.5 s merge: 1 + 1.5 + 0.5 = 3 s,
+    // against 1 + 4 * 1.5 + 0.5 = 7.5 s on one rank: efficiency 7.5 / (4 * 3).
     const std::vector<double> views = {1, 1, 1, 1};
     const QueueSimulation s = simulateWorkQueue(views, 4, 1.0, 0.5, 0.5);
     EXPECT_DOUBLE_EQ(s.makespanSeconds, 3.0);
-    EXPECT_DOUBLE_EQ(s.efficiency, 4.0 / 12.0);
-    // One rank: the same views in a row.
-    EXPECT_DOUBLE_EQ(simulateWorkQueue(views, 1, 1.0, 0.5, 0.5).makespanSeconds, 1.0 + 6.0 + 0.5);
+    EXPECT_DOUBLE_EQ(s.efficiency, 7.5 / 12.0);
+    const QueueSimulation one = simulateWorkQueue(views, 1, 1.0, 0.5, 0.5);
+    EXPECT_DOUBLE_EQ(one.makespanSeconds, 7.5);
+    EXPECT_DOUBLE_EQ(one.efficiency, 1.0);
 }
 
 TEST(WorkQueueModel, RefusesUnusableInput) {

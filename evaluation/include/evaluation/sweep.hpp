@@ -43,8 +43,9 @@ struct QueueSimulation {
     int ranks = 1;
     double makespanSeconds = 0.0;  // first start to the merge's end
     double workSeconds = 0.0;      // the views' own seconds, summed
-    // workSeconds / (ranks * makespanSeconds): 1 when no rank ever waits and nothing is
-    // added; what the startup, the tail (the last views) and the merge cost.
+    // Parallel efficiency T1 / (ranks * Tp): the one-rank makespan (one scene load, every view
+    // and its overhead, the merge) over ranks times this makespan. 1 at one rank; below 1 by
+    // what the extra scene loads, the idle tail (the last views) and the serial merge cost.
     double efficiency = 0.0;
     std::vector<double> idleSeconds;  // per rank: makespan minus its busy time
 };
