@@ -41,24 +41,28 @@ void plotSweepViews(ReportContext& context, const SweepTable& table, double budg
     context.plot(spec, "Per view (in sweep order): the answer's fitness (left axis) and predicted time (right axis).");
 }
 
-// Every (object, view) pair's chosen level against the object's screen size there: the choices
-// an engine's screen-size rule would have to reproduce. At most 20,000 points (an even stride).
+// Every searched (object, view) pair's chosen level against the object's screen size there: the
+// choices an engine's screen-size rule would have to reproduce (objects out of view, below a
+// pixel or hidden made no choice). At most 20,000 points (an even stride).
 void plotLevelsAgainstScreenSize(ReportContext& context, const SweepTable& table) {
-    const std::size_t pairs = table.views.size() * table.objects.size();
+    std::size_t pairs = 0;
+    for (const SweepTableView& view : table.views) pairs += view.searched.size();
     if (pairs == 0) return;
     const std::size_t stride = std::max<std::size_t>(1, pairs / 20000);
     std::ostringstream data;
-    data << "# screen_size level (every " << stride << "th of " << pairs << " object-view pairs)\n";
+    data << "# screen_size level (every " << stride << "th of " << pairs << " searched object-view pairs)\n";
     std::map<int, std::vector<double>> sizesByLevel;
     int coarsest = 0;
     std::size_t index = 0;
     for (const SweepTableView& view : table.views) {
-        for (std::size_t i = 0; i < table.objects.size(); ++i, ++index) {
+        for (int object : view.searched) {
+            const auto i = std::size_t(object);
             const double size = view.screenSizes[i];
+            ++index;
             if (!(size > 0.0)) continue;
             sizesByLevel[view.levels[i]].push_back(size);
             coarsest = std::max(coarsest, view.levels[i]);
-            if (index % stride == 0) data << size << ' ' << view.levels[i] << '\n';
+            if ((index - 1) % stride == 0) data << size << ' ' << view.levels[i] << '\n';
         }
     }
     PlotSpec spec;
@@ -70,15 +74,16 @@ void plotLevelsAgainstScreenSize(ReportContext& context, const SweepTable& table
                   ".5:-0.5]\nunset key\nplot '" +
                   spec.name + ".dat' using 1:($2 + 0.3 * (rand(0) - 0.5)) with points pt 7 ps 0.3 lc rgb '" +
                   seriesColor(0) + "'\n";
-    context.plot(spec, "Each point is one object in one view (levels jittered vertically to show density); a "
-                       "per-object screen-size threshold rule draws the finer level above each switch point.");
+    context.plot(spec, "Each point is one searched object in one view (levels jittered vertically to show "
+                       "density); a per-object screen-size threshold rule draws the finer level above each "
+                       "switch point.");
     std::vector<std::vector<std::string>> rows;
     for (auto& [level, sizes] : sizesByLevel) {
         const Summary s = summarize(sizes);
         rows.push_back({std::to_string(level), std::to_string(s.count), formatNumber(s.min), formatNumber(s.median),
                         formatNumber(s.max)});
     }
-    context.html.table({"level", "object-views", "min screen size", "median", "max"}, rows);
+    context.html.table({"level", "searched object-views", "min screen size", "median", "max"}, rows);
 }
 
 // Per rank: views and busy seconds (sweep_timing.csv), the work queue's balance.

@@ -105,6 +105,7 @@ nlohmann::json viewJson(const SweepPlan& plan, std::size_t view, const evaluatio
             {"fitness", outcome.fitness},
             {"predicted_ms", outcome.predictedMs},
             {"searched_objects", outcome.searchedObjects},
+            {"searched", outcome.searched},
             {"evaluations", outcome.evaluations},
             {"screen_sizes", sizes},
             {"rank", rank},
@@ -118,7 +119,8 @@ nlohmann::json readViewFile(const std::filesystem::path& folder, const SweepPlan
     nlohmann::json json = readJsonOrThrow(path, "sweep view");
     if (json.value("format", "") != "lodopt-sweep-view" || json.value("version", 0) != 1 || !json.contains("levels") ||
         !json.contains("camera") || !json.contains("settings") || !json["levels"].is_array() ||
-        !json.contains("screen_sizes") || json.value("view", std::size_t(-1)) != view) {
+        !json.contains("screen_sizes") || !json.contains("searched") || !json["searched"].is_array() ||
+        json.value("view", std::size_t(-1)) != view) {
         throw UsageError(path.string() + ": not view " + std::to_string(view) + " of a lodopt sweep");
     }
     checkIdentity(path.string(), json["settings"], plan.settings);
@@ -155,7 +157,7 @@ MergeSummary mergeViews(const SweepPlan& plan, const std::vector<std::filesystem
     std::ostringstream csv, timing;
     csv << std::setprecision(17);
     csv << "view,name,position_x,position_y,position_z,target_x,target_y,target_z,fov_y_degrees,fitness,"
-           "predicted_ms,feasible,searched_objects,evaluations,levels,screen_sizes\n";
+           "predicted_ms,feasible,searched_objects,evaluations,levels,screen_sizes,searched\n";
     timing << "view,rank,setup_seconds,search_seconds,evaluations\n";
     std::vector<std::size_t> missing;
     MergeSummary summary;
@@ -177,6 +179,7 @@ MergeSummary mergeViews(const SweepPlan& plan, const std::vector<std::filesystem
                               {"fitness", saved["fitness"]},
                               {"predicted_ms", saved["predicted_ms"]},
                               {"searched_objects", saved["searched_objects"]},
+                              {"searched", saved["searched"]},
                               {"evaluations", saved["evaluations"]},
                               {"screen_sizes", saved["screen_sizes"]}};
         csv << k << "," << csvField(c.name) << "," << saved["camera"]["position"][0].dump() << ","
@@ -186,7 +189,7 @@ MergeSummary mergeViews(const SweepPlan& plan, const std::vector<std::filesystem
             << saved["fitness"].dump() << "," << saved["predicted_ms"].dump() << ","
             << (saved.value("feasible", true) ? 1 : 0) << "," << saved["searched_objects"].dump()
             << "," << saved["evaluations"].dump() << "," << joined(saved["levels"]) << ","
-            << joined(saved["screen_sizes"]) << "\n";
+            << joined(saved["screen_sizes"]) << "," << joined(saved["searched"]) << "\n";
         timing << k << "," << saved.value("rank", 0) << "," << saved.value("setup_seconds", 0.0) << ","
                << saved.value("search_seconds", 0.0) << "," << saved["evaluations"].dump() << "\n";
         const double fitness = saved["fitness"].get<double>();
@@ -255,12 +258,19 @@ SweepTable readSweepTable(const std::filesystem::path& folderOrFile) {
             row.fitness = view.at("fitness").get<double>();
             row.predictedMs = view.at("predicted_ms").get<double>();
             row.screenSizes = view.at("screen_sizes").get<std::vector<double>>();
+            row.searched = view.at("searched").get<std::vector<int>>();
         } catch (const nlohmann::json::exception& error) {
             throw UsageError(where + ": " + error.what());
         }
         if (row.levels.size() != table.objects.size() || row.screenSizes.size() != table.objects.size()) {
             throw UsageError(where + ": levels and screen_sizes need one entry per object (" +
                              std::to_string(table.objects.size()) + ")");
+        }
+        for (int object : row.searched) {
+            if (object < 0 || std::size_t(object) >= table.objects.size()) {
+                throw UsageError(where + ": searched names object " + std::to_string(object) + " of " +
+                                 std::to_string(table.objects.size()));
+            }
         }
         table.views.push_back(std::move(row));
     }

@@ -2,7 +2,8 @@
 //   sweep.plan.json     what is swept: the settings that change a view's answer, the scene's object
 //                       names, every camera in view order (written before any view)
 //   views/view_NNNNNN.json  one finished view: its settings, camera, answer, fitness, predicted
-//                       time, each object's screen size, and how long it took on which rank
+//                       time, each object's screen size, the objects searched (the others were
+//                       out of view, below a pixel or hidden), and how long it took on which rank
 //   sweep.json, sweep.csv   the merged table, in view order, without timings or ranks: the same
 //                       bytes however the views were spread (ranks, shards, resumed runs)
 //   sweep_timing.csv    per view: rank, setup and search seconds (differs run to run)
@@ -66,6 +67,7 @@ struct SweepTableView {
     double fitness = 0.0;
     double predictedMs = 0.0;
     std::vector<double> screenSizes;
+    std::vector<int> searched;  // object indices the search chose for
 };
 struct SweepTable {
     nlohmann::json settings;

@@ -25,6 +25,7 @@ SweepViewOutcome sweepView(const scenes::Scene& scene, const scenes::Camera& cam
         outcome.fitness = answer.metrics.fitness;
         outcome.predictedMs = answer.result.predictedMs;
         outcome.searchedObjects = int(answer.view.problem.levelCounts.size());
+        outcome.searched = answer.view.setup->variableObjects();
         outcome.evaluations = answer.result.evaluations;
         outcome.setupSeconds = answer.setupSeconds;
         // The search and the answer's full render and scoring.
@@ -35,6 +36,7 @@ SweepViewOutcome sweepView(const scenes::Scene& scene, const scenes::Camera& cam
         outcome.levels = scenes::coarsestCombination(scene);
         outcome.predictedMs = error.minimumMs();
         outcome.searchedObjects = int(setup.variableObjects().size());
+        outcome.searched = setup.variableObjects();
         FullRenderEvaluator full(setup, renderer, metrics);
         outcome.fitness = full.metricsOf(setup.fromScene(outcome.levels)).fitness;
         outcome.setupSeconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -58,6 +59,11 @@ TEST(SweepCli, OneProcessWritesEveryViewAndTheMergedTable) {
     for (const nlohmann::json& view : sweep["views"]) {
         EXPECT_EQ(view["levels"].size(), objects);
         EXPECT_EQ(view["screen_sizes"].size(), objects);
+        // The searched objects, ascending and in range, as many as searched_objects says.
+        const std::vector<int> searched = view["searched"].get<std::vector<int>>();
+        EXPECT_EQ(searched.size(), view["searched_objects"].get<std::size_t>());
+        EXPECT_TRUE(std::is_sorted(searched.begin(), searched.end()));
+        for (int object : searched) EXPECT_LT(std::size_t(object), objects);
         EXPECT_GT(view["fitness"].get<double>(), 0.0);
         EXPECT_LE(view["fitness"].get<double>(), 1.0);
         if (view["feasible"].get<bool>()) {

@@ -23,6 +23,9 @@ struct SweepViewOutcome {
     double predictedMs = 0.0;         // the time model's prediction for the answer
     std::vector<double> screenSizes;  // per scene object: scenes::screenSize of its level 0
     int searchedObjects = 0;
+    // The scene objects the search chose for (the view's variables), ascending; the others were
+    // out of the frustum, below a pixel or hidden, and sit at their coarsest level.
+    std::vector<int> searched;
     std::int64_t evaluations = 0;
     double setupSeconds = 0.0;   // wall time preparing the view (layers, surrogate table)
     double searchSeconds = 0.0;  // wall time of the search and the answer's full render
