@@ -83,5 +83,6 @@ void addScheduleCommand(CLI::App& app);
 void addReportCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);
+void addThresholdsCommand(CLI::App& app);
 
 }  // namespace lodopt::cli

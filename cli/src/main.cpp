@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
     addOptimizeCommand(app);
     addCompareCommand(app);
     addSweepCommand(app);
+    addThresholdsCommand(app);
     addTuneCommand(app);
     addScheduleCommand(app);
     addReportCommand(app);

@@ -18,6 +18,7 @@
 
 #include "scenes/atomic_file.hpp"
 #include "scenes/gltf_io.hpp"
+#include "scenes/engine_lod.hpp"
 
 namespace lodopt::scenes {
 
@@ -195,7 +196,7 @@ json cameraPathsJson(const std::vector<CameraPath>& paths) {
 
 }  // namespace
 
-void exportGltf(const Scene& scene, const std::string& path) {
+void exportGltf(const Scene& scene, const std::string& path, const GltfExportOptions& options) {
     std::string extension = std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
     if (extension != ".gltf" && extension != ".glb") {
@@ -235,7 +236,12 @@ void exportGltf(const Scene& scene, const std::string& path) {
                                                  [](const Level& level) { return level.screenCoverage.has_value(); });
             if (allCoverage) {
                 json coverage = json::array();
-                for (const Level& level : object.levels) coverage.push_back(*level.screenCoverage);
+                const Bounds bounds = worldBounds(object, 0);
+                for (const Level& level : object.levels) {
+                    coverage.push_back(options.coverage == CoverageConvention::UnityRelativeHeight
+                                           ? unityRelativeHeight(*level.screenCoverage, bounds)
+                                           : double(*level.screenCoverage));
+                }
                 nodes[root]["extras"] = {{"MSFT_screencoverage", coverage}};
             }
         }
@@ -337,6 +343,13 @@ void exportGltf(const Scene& scene, const std::string& path) {
     if (!scene.name.empty()) sceneJson["name"] = scene.name;
     if (!scene.paths.empty()) sceneJson["extras"] = {{"lodopt_camera_paths", cameraPathsJson(scene.paths)}};
     json document = {{"asset", {{"version", "2.0"}, {"generator", "lodopt"}}}, {"scene", 0}, {"scenes", json::array({sceneJson})}};
+    if (options.coverage == CoverageConvention::UnityRelativeHeight) {
+        document["asset"]["extras"] = {
+            {"lodopt_screencoverage", "unity_relative_height"},
+            {"lodopt_screencoverage_note",
+             "MSFT_screencoverage[k]: level k is drawn while the object's bounds' largest extent over the view height "
+             "is at least this value (UnityGLTF's LOD.screenRelativeTransitionHeight); the last level's 0 never culls"}};
+    }
     if (!nodes.empty()) document["nodes"] = nodes;
     if (!meshes.empty()) document["meshes"] = meshes;
     if (!materials.empty()) document["materials"] = materials;

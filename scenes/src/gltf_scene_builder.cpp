@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "scenes/engine_lod.hpp"
 #include "scenes/lod_generation.hpp"
 
 namespace lodopt::scenes::gltf_detail {
@@ -106,10 +107,31 @@ Scene SceneBuilder::build() {
     visitGroupLevel(roots, glm::mat4(1.0f));
     generateMissingTangents();
     updateStatistics(mScene);
+    convertScreenCoverage();
     buildViews();
     if (sceneIndex >= 0) buildPaths(sceneIndex);
     validateScene(mScene);
     return std::move(mScene);
+}
+
+// A file that marks its MSFT_screencoverage values as Unity relative heights (gltf_io.hpp):
+// back to screen sizes, with each object's level-0 world bounds as the exporter used them.
+void SceneBuilder::convertScreenCoverage() {
+    const tinygltf::Value& extras = mModel.asset.extras;
+    if (!extras.IsObject() || !extras.Has("lodopt_screencoverage")) return;
+    const tinygltf::Value& convention = extras.Get("lodopt_screencoverage");
+    if (!convention.IsString() || convention.Get<std::string>() != "unity_relative_height") {
+        warn("asset.extras.lodopt_screencoverage: unknown convention, MSFT_screencoverage read as screen sizes");
+        return;
+    }
+    for (Object& object : mScene.objects) {
+        const Bounds bounds = worldBounds(object, 0);
+        for (Level& level : object.levels) {
+            if (level.screenCoverage) {
+                level.screenCoverage = float(screenSizeFromUnityRelativeHeight(*level.screenCoverage, bounds));
+            }
+        }
+    }
 }
 
 // Normal maps need a tangent frame; a primitive without TANGENT gets one from its UVs (spec

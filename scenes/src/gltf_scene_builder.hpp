@@ -53,6 +53,7 @@ private:
     void applyMaterialLods(Object& object, int rootNode);
     void finishObject(Object object);
     void generateMissingTangents();
+    void convertScreenCoverage();
 
     void buildMaterials();
     Material buildMaterial(int index);

@@ -1,10 +1,12 @@
 // exportGltf round trips: load(export(scene)) gives the same objects, levels, statistics,
 // materials, textures, views, camera paths and name, for .gltf and .glb.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "gltf_test_files.hpp"
 #include "scenes/gltf_io.hpp"
@@ -169,6 +171,28 @@ TEST(GltfExport, HandBuiltSceneRoundTripsAsGltfAndGlb) {
         exportGltf(scene, dir.file(name));
         expectSameScene(scene, loadGltf(dir.file(name), noGeneration()));
     }
+}
+
+TEST(GltfExport, ScreenCoverageAsUnityHeightsIsMarkedAndReadBackAsScreenSizes) {
+    TempDir dir;
+    const Scene scene = handBuiltScene(false);
+    GltfExportOptions options;
+    options.coverage = CoverageConvention::UnityRelativeHeight;
+    exportGltf(scene, dir.file("unity.gltf"), options);
+    std::ifstream file(dir.file("unity.gltf"));
+    const nlohmann::json document = nlohmann::json::parse(file);
+    EXPECT_EQ(document["asset"]["extras"]["lodopt_screencoverage"], "unity_relative_height");
+    // The box's level-0 world bounds: its values are screen sizes times largest extent / diameter.
+    const Bounds bounds = worldBounds(scene.objects[0], 0);
+    const glm::vec3 size = bounds.max - bounds.min;
+    const double factor = std::max({size.x, size.y, size.z}) / (2.0 * bounds.sphereRadius);
+    const nlohmann::json& written = document["nodes"][0]["extras"]["MSFT_screencoverage"];
+    ASSERT_EQ(written.size(), 3u);
+    EXPECT_NEAR(written[0].get<double>(), 0.4 * factor, 1e-6);
+    EXPECT_NEAR(written[2].get<double>(), 0.02 * factor, 1e-6);
+    EXPECT_LT(factor, 0.99);  // a cylinder with a lid: not a cube, so the conventions differ
+    // Read back: screen sizes again, everything else as exported.
+    expectSameScene(scene, loadGltf(dir.file("unity.gltf"), noGeneration()));
 }
 
 TEST(GltfExport, TexturedSceneRoundTripsPixelForPixel) {

@@ -56,14 +56,27 @@ struct GltfLoadOptions {
 
 Scene loadGltf(const std::string& path, const GltfLoadOptions& options = {});
 
+// What the values of extras.MSFT_screencoverage measure (the extension leaves it open). Inside
+// lodopt Level::screenCoverage is always a screen size (scenes::screenSize: bounding-sphere
+// diameter over the view height). A file may say otherwise in asset.extras
+// .lodopt_screencoverage: "unity_relative_height" (the bounds' largest extent over the view
+// height, what UnityGLTF reads as LOD.screenRelativeTransitionHeight); the loader converts
+// such values to screen sizes with each object's level-0 world bounds (engine_lod.hpp).
+// Files without the mark are read as screen sizes.
+enum class CoverageConvention { ScreenSize, UnityRelativeHeight };
+
+struct GltfExportOptions {
+    CoverageConvention coverage = CoverageConvention::ScreenSize;
+};
+
 // Writes .gltf (JSON + embedded base64 buffer and PNG images) or .glb (by extension, any
 // case) with one scene root node per object: its level 0, carrying MSFT_lod (levels 1.. as
 // nodes outside the scene, with the same transform) and MSFT_screencoverage in its extras
-// when every level has one. Views become camera nodes (their targets kept in the node's
+// when every level has one (in options.coverage's convention, marked in asset.extras). Views become camera nodes (their targets kept in the node's
 // extras.lodopt_target), Scene::paths the scene's extras.lodopt_camera_paths, Scene::name
 // the scene's name. loadGltf() of the result gives back the same objects, levels, materials,
 // textures, views and paths. Written to a temporary file and renamed, so a failure leaves
 // no partial output. Throws SceneError for another extension or an invalid scene.
-void exportGltf(const Scene& scene, const std::string& path);
+void exportGltf(const Scene& scene, const std::string& path, const GltfExportOptions& options = {});
 
 }  // namespace lodopt::scenes

@@ -1,0 +1,99 @@
+// lodopt thresholds: per-object switch thresholds from a sweep, written for the engines, and the
+// exported file read back by lodopt itself.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "child_process.hpp"
+#include "run_lodopt.hpp"
+
+namespace lodopt::cli_test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Folder {
+    fs::path root = fs::temp_directory_path() / ("lodopt_thresholds_" + std::to_string(::getpid()) + "_" +
+                                                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    Folder() {
+        fs::remove_all(root);
+        fs::create_directories(root);
+    }
+    ~Folder() { fs::remove_all(root); }
+    std::string operator/(const std::string& name) const { return (root / name).string(); }
+};
+
+TEST(ThresholdsCli, FromASweepWritesEngineFilesThatLodoptReadsBack) {
+    Folder folder;
+    // Views sampled around the harbor's own: the ship and the aircraft are searched in most.
+    ASSERT_EQ(runLodopt("sweep --scene harbor --view-count 12 --size 64x64 --budget-ms 0.6 --max-evals 60 --threads 1 "
+                        "--quiet --out " + (folder / "sweep"))
+                  .exitCode,
+              0);
+    const CommandResult run =
+        runLodopt("thresholds --from " + (folder / "sweep") + " --out " + (folder / "out") + " --json");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const nlohmann::json summary = nlohmann::json::parse(run.output);
+    EXPECT_GE(summary["fitted_objects"].get<int>(), 1);
+    EXPECT_EQ(summary["holdout_every"], 4);
+    const nlohmann::json document = readJson(folder / "out/thresholds.json");
+    EXPECT_EQ(document["format"], "lodopt-thresholds");
+    ASSERT_EQ(document["objects"].size(), 3u);
+    for (const nlohmann::json& object : document["objects"]) {
+        const auto sizes = object["screen_size"].get<std::vector<double>>();
+        ASSERT_EQ(int(sizes.size()), object["levels"].get<int>() - 1) << object["name"];
+        EXPECT_TRUE(std::is_sorted(sizes.rbegin(), sizes.rend())) << object["name"];
+        const auto unity = object["unity_relative_height"].get<std::vector<double>>();
+        const auto distance = object["threejs_distance"].get<std::vector<double>>();
+        for (std::size_t k = 0; k < sizes.size(); ++k) {
+            EXPECT_LE(unity[k], sizes[k] * (1.0 + 1e-12));  // largest extent <= diameter
+            EXPECT_GT(distance[k], 0.0);
+            if (k > 0) EXPECT_GE(distance[k], distance[k - 1]);  // coarser levels from farther away
+        }
+    }
+    // lodopt reads the exported file's thresholds back as the same screen sizes (floats).
+    const std::string glb = folder / "out/harbor.lod.glb";
+    const CommandResult info = runLodopt("scene info " + glb + " --json");
+    ASSERT_EQ(info.exitCode, 0);
+    const nlohmann::json scene = nlohmann::json::parse(info.output);
+    for (std::size_t i = 0; i < scene["objects"].size(); ++i) {
+        const auto sizes = document["objects"][i]["screen_size"].get<std::vector<double>>();
+        const nlohmann::json& levels = scene["objects"][i]["levels"];
+        for (std::size_t k = 0; k < sizes.size(); ++k) {
+            EXPECT_NEAR(levels[k]["screen_coverage"].get<double>() / sizes[k], 1.0, 1e-5) << i << " " << k;
+        }
+        EXPECT_EQ(levels[sizes.size()]["screen_coverage"].get<double>(), 0.0);  // the coarsest is never culled
+    }
+    // The engine baseline runs on them.
+    EXPECT_EQ(runLodopt("optimize --scene " + glb + " --view overview --algo screensize --budget-ms 7 --size 64x64 "
+                        "--quiet --out " + (folder / "optimize"))
+                  .exitCode,
+              0);
+}
+
+TEST(ThresholdsCli, BadInputIsRefusedWithExitCode2) {
+    Folder folder;
+    EXPECT_EQ(runLodopt("thresholds --from " + (folder / "missing") + " --out " + (folder / "out")).exitCode, 2);
+    EXPECT_EQ(runLodopt("thresholds --out " + (folder / "out")).exitCode, 2);  // --from is required
+    // Cameras with two fields of view: the distance conventions need --fov.
+    std::ofstream(folder / "cameras.json")
+        << R"([{"position": [0, 3, 30], "target": [0, 0, 0], "fov_y_degrees": 40},)"
+        << R"( {"position": [20, 5, 20], "target": [0, 0, 0], "fov_y_degrees": 60}])";
+    ASSERT_EQ(runLodopt("sweep --scene harbor --cameras " + (folder / "cameras.json") +
+                        " --size 64x64 --budget-ms 0.6 --max-evals 30 --quiet --out " + (folder / "sweep"))
+                  .exitCode,
+              0);
+    const Exit mixed = runLodoptChild(splitWords("thresholds --from " + (folder / "sweep") + " --out " + (folder / "o")),
+                                      "/dev/null", folder / "err.txt");
+    EXPECT_EQ(mixed.code, 2);
+    EXPECT_NE(mixed.err.find("--fov"), std::string::npos) << mixed.err;
+    EXPECT_FALSE(fs::exists(folder / "o/thresholds.json"));
+    EXPECT_EQ(runLodopt("thresholds --from " + (folder / "sweep") + " --fov 50 --out " + (folder / "o")).exitCode, 0);
+}
+
+}  // namespace
+}  // namespace lodopt::cli_test
