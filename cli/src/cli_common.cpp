@@ -40,6 +40,22 @@ std::vector<int> parseIntList(const std::string& text, const std::string& what) 
     return values;
 }
 
+std::vector<double> parseNumberList(const std::string& text, const std::string& what, const std::string& expected) {
+    std::vector<double> values;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        try {
+            std::size_t used = 0;
+            values.push_back(std::stod(item, &used));
+            if (used != item.size()) throw std::invalid_argument(item);
+        } catch (const std::exception&) {
+            throw UsageError(what + ": '" + item + "' is not a number (expected " + expected + ")");
+        }
+    }
+    return values;
+}
+
 CLI::Option* addSceneOption(CLI::App& command, std::string& scene, bool positional) {
     return command.add_option(positional ? "--scene,scene" : "--scene", scene, "Built-in scene name or glTF/GLB path")
         ->capture_default_str();

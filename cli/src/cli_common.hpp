@@ -43,6 +43,9 @@ void checkIdentity(const std::string& path, const nlohmann::json& was, const nlo
 
 // Parses "0,2,1" into integers; throws UsageError naming `what`.
 std::vector<int> parseIntList(const std::string& text, const std::string& what);
+// Parses "1.5,-2,3e-2" into numbers; throws UsageError naming `what` and `expected` (the form,
+// e.g. "D1,K1,D2,K2,NEAR") for an item that is not one.
+std::vector<double> parseNumberList(const std::string& text, const std::string& what, const std::string& expected);
 
 // ---- Option groups: declared once, the same name and meaning on every command ----
 // --scene NAME|FILE (built-in scene or glTF/GLB); `positional` also takes it without the flag.

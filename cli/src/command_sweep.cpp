@@ -84,21 +84,7 @@ std::vector<scenes::Camera> camerasFromFile(const std::string& file) {
 }
 
 scenes::GroundBox parseGroundBox(const std::string& text) {
-    const std::vector<double> values = [&] {
-        std::vector<double> parsed;
-        std::stringstream stream(text);
-        std::string item;
-        while (std::getline(stream, item, ',')) {
-            try {
-                std::size_t used = 0;
-                parsed.push_back(std::stod(item, &used));
-                if (used != item.size()) throw std::invalid_argument(item);
-            } catch (const std::exception&) {
-                throw UsageError("--grid-box '" + text + "': '" + item + "' is not a number");
-            }
-        }
-        return parsed;
-    }();
+    const std::vector<double> values = parseNumberList(text, "--grid-box", "MIN_X,MIN_Z,MAX_X,MAX_Z");
     if (values.size() != 4 || !(values[0] <= values[2] && values[1] <= values[3])) {
         throw UsageError("--grid-box '" + text + "': expected MIN_X,MIN_Z,MAX_X,MAX_Z with min <= max");
     }

@@ -120,18 +120,7 @@ scheduler::Organisation parseOrganisation(const std::string& text) {
 }
 
 void parseSwitchControl(const std::string& text, scheduler::SwitchControlParameters& p) {
-    std::vector<double> values;
-    std::stringstream stream(text);
-    std::string item;
-    while (std::getline(stream, item, ',')) {
-        try {
-            std::size_t used = 0;
-            values.push_back(std::stod(item, &used));
-            if (used != item.size()) throw std::invalid_argument(item);
-        } catch (const std::exception&) {
-            throw UsageError("--switch-control: '" + item + "' is not a number (expected D1,K1,D2,K2,NEAR)");
-        }
-    }
+    const std::vector<double> values = parseNumberList(text, "--switch-control", "D1,K1,D2,K2,NEAR");
     if (values.size() != 5) throw UsageError("--switch-control: expected five numbers D1,K1,D2,K2,NEAR");
     p.delta1 = values[0];
     p.k1 = values[1];
