@@ -127,8 +127,14 @@ void SceneBuilder::convertScreenCoverage() {
     for (Object& object : mScene.objects) {
         const Bounds bounds = worldBounds(object, 0);
         for (Level& level : object.levels) {
-            if (level.screenCoverage) {
-                level.screenCoverage = float(screenSizeFromUnityRelativeHeight(*level.screenCoverage, bounds));
+            if (!level.screenCoverage) continue;
+            const float size = float(screenSizeFromUnityRelativeHeight(*level.screenCoverage, bounds));
+            if (std::isfinite(size)) {
+                level.screenCoverage = size;
+            } else {  // degenerate or enormous bounds: no usable threshold
+                level.screenCoverage.reset();
+                warn("object '" + object.name + "': an MSFT_screencoverage value does not convert to a screen size; "
+                     "ignored");
             }
         }
     }

@@ -38,8 +38,13 @@ struct Group {
 
 std::vector<Group> groupBySize(std::span<const ThresholdSample> samples, int levelCount) {
     std::vector<ThresholdSample> sorted(samples.begin(), samples.end());
-    std::stable_sort(sorted.begin(), sorted.end(),
-                     [](const ThresholdSample& a, const ThresholdSample& b) { return a.screenSize > b.screenSize; });
+    // A total order (size, then level, then weight), so each group sums its costs in one order
+    // whatever order the samples came in.
+    std::sort(sorted.begin(), sorted.end(), [](const ThresholdSample& a, const ThresholdSample& b) {
+        if (a.screenSize != b.screenSize) return a.screenSize > b.screenSize;
+        if (a.level != b.level) return a.level < b.level;
+        return a.weight < b.weight;
+    });
     std::vector<Group> groups;
     for (const ThresholdSample& s : sorted) {
         if (groups.empty() || groups.back().screenSize != s.screenSize) {
