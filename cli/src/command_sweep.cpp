@@ -184,7 +184,6 @@ SweepRun runViews(const SweepOptions& o, PreparedScene& prepared, const SweepPla
     const std::size_t total = plan.cameras.size();
     const bool reports = queue.rank() == 0 && o.shard.empty();
     Progress progress("sweep", total, output.quiet || !reports, Progress::Style::Lines);
-    progress.begin(0);
     SweepRun run;
     while (const std::optional<std::size_t> view = queue.next()) {
         const scenes::Camera& camera = plan.cameras[*view];

@@ -58,11 +58,11 @@ void plotLevelsAgainstScreenSize(ReportContext& context, const SweepTable& table
         for (int object : view.searched) {
             const auto i = std::size_t(object);
             const double size = view.screenSizes[i];
-            ++index;
+            const bool plotted = index++ % stride == 0;
             if (!(size > 0.0)) continue;
             sizesByLevel[view.levels[i]].push_back(size);
             coarsest = std::max(coarsest, view.levels[i]);
-            if ((index - 1) % stride == 0) data << size << ' ' << view.levels[i] << '\n';
+            if (plotted) data << size << ' ' << view.levels[i] << '\n';
         }
     }
     PlotSpec spec;
