@@ -26,11 +26,6 @@ Progress::Progress(std::string task, std::size_t total, bool quiet, Style style)
 
 void Progress::step(const std::string& label) { update(mDone + 1, label); }
 
-void Progress::begin(std::size_t alreadyDone) {
-    mDone = mFirstDone = alreadyDone;
-    mStart = std::chrono::steady_clock::now();
-}
-
 void Progress::update(std::size_t done, const std::string& label) {
     mDone = done;
     if (!mEnabled) return;
@@ -38,8 +33,7 @@ void Progress::update(std::size_t done, const std::string& label) {
     const bool last = mDone >= mTotal;
     if (mLines && !last && elapsed - mLastLine < 10.0) return;
     mLastLine = elapsed;
-    const std::size_t thisRun = mDone - std::min(mFirstDone, mDone);
-    const double rate = elapsed > 0.0 ? double(thisRun) / elapsed : 0.0;
+    const double rate = elapsed > 0.0 ? double(mDone) / elapsed : 0.0;
     const double remaining = rate > 0.0 ? double(mTotal - std::min(mDone, mTotal)) / rate : -1.0;
     const double percent = mTotal ? 100.0 * double(mDone) / double(mTotal) : 100.0;
     if (mLines) {
