@@ -3,12 +3,17 @@
 // (each engine's convention) and the scene as <scene>.lod.glb with MSFT_lod and
 // MSFT_screencoverage in UnityGLTF's convention (docs/thresholds.md).
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
 
 #include "cli_common.hpp"
 #include "evaluation/engine_thresholds.hpp"
+#include "evaluation/level_costs.hpp"
+#include "evaluation/switch_rules.hpp"
+#include "optimize_run.hpp"
+#include "progress.hpp"
 #include "report_data.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
@@ -22,6 +27,9 @@ struct ThresholdsOptions {
     std::string out = "out/thresholds";
     int holdoutEvery = 4;
     double fovYDegrees = 0.0;  // 0: the sweep's cameras' (which must agree)
+    double hysteresis = evaluation::ThresholdSettings{}.hysteresis;
+    double priorSamples = evaluation::ThresholdSettings{}.priorSamples;
+    std::string pricing = "measured";  // or "level-error"
 };
 
 double sweepFov(const SweepTable& table, double given) {
@@ -45,19 +53,28 @@ nlohmann::json objectJson(const scenes::Object& object, const evaluation::Object
             {"held_out_samples", r.heldOutSamples},
             {"fit_agreement", numberOrNull(r.fitAgreement)},
             {"held_out_agreement", numberOrNull(r.heldOutAgreement)},
+            {"fitted_screen_size", r.fittedScreenSize},
             {"screen_size", r.screenSize},
             {"unreal_screen_size", r.unrealScreenSize},
             {"unity_relative_height", r.unityRelativeHeight},
             {"threejs_distance", r.switchDistance},
             {"babylon_distance", r.switchDistance},
-            {"babylon_coverage", r.babylonCoverage}};
+            {"babylon_coverage", r.babylonCoverage},
+            {"unreal_lod_hysteresis", r.unrealHysteresis}};
 }
 
 const nlohmann::json& conventions() {
     static const nlohmann::json text = {
         {"rule", "level k is drawn for the first k whose threshold the object reaches; below every threshold the "
                  "coarsest level (never culled)"},
-        {"screen_size", "bounding-sphere diameter over the view height (lodopt's own)"},
+        {"fitted_screen_size", "the thresholds as fitted, in screen size (bounding-sphere diameter over the view height)"},
+        {"screen_size", "fitted_screen_size / lod_bias: the global LOD bias that meets the budget is baked into this and "
+                        "every engine value below, so engines keep theirs at 1 (Unity QualitySettings.lodBias, Unreal "
+                        "r.StaticMeshLODDistanceScale)"},
+        {"unreal_lod_hysteresis", "screen size above the threshold an object must reach to go finer again (Unreal "
+                                  "skeletal mesh LODHysteresis; static meshes have none)"},
+        {"hysteresis", "three.js LOD.addLevel(object, distance, hysteresis): the level goes finer again only closer "
+                       "than distance x (1 - hysteresis); Unity and Babylon.js have no band"},
         {"unreal_screen_size", "Unreal Engine static mesh LOD ScreenSize (views at least as wide as high)"},
         {"unity_relative_height", "Unity LOD.screenRelativeTransitionHeight: bounds' largest extent over the view "
                                   "height; also the values of MSFT_screencoverage in the .lod.glb (UnityGLTF)"},
@@ -68,27 +85,104 @@ const nlohmann::json& conventions() {
     return text;
 }
 
+// The options the sweep was made with that decide what a view renders, scores and predicts.
+OptimizeOptions sweepOptions(const SweepTable& table, const std::string& from) {
+    OptimizeOptions options;
+    const nlohmann::json& s = table.settings;
+    try {
+        options.scene = s.at("scene").get<std::string>();
+        options.sceneSeed = s.value("scene-seed", std::uint32_t(1));
+        options.size = s.value("size", options.size);
+        options.shading = s.value("shading", options.shading);
+        options.weights = s.value("weights", options.weights);
+        options.profile = s.value("profile", std::string());
+        options.model = s.value("model", std::string());
+        options.budgetMs = s.at("budget-ms").get<double>();
+    } catch (const nlohmann::json::exception& error) {
+        throw UsageError(from + ": the sweep's settings lack what a view needs (" + error.what() + ")");
+    }
+    options.view = "0";
+    return options;
+}
+
+nlohmann::json biasJson(const evaluation::LodBias& bias) {
+    return {{"lod_bias", bias.bias}, {"fitting_mean_predicted_ms", bias.meanPredictedMs}, {"meets_budget", bias.meetsBudget}};
+}
+
+nlohmann::json comparisonJson(const evaluation::RuleComparison& comparison) {
+    auto numberOrNull = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+    nlohmann::json rules = nlohmann::json::array();
+    for (const evaluation::RuleOutcome& rule : comparison.rules) {
+        nlohmann::json row = {{"rule", rule.rule},
+                              {"mean_fitness", numberOrNull(rule.meanFitness)},
+                              {"gain_fraction", numberOrNull(rule.gainFraction)},
+                              {"over_budget_share", numberOrNull(rule.overBudgetShare)},
+                              {"mean_predicted_ms", numberOrNull(rule.meanPredictedMs)}};
+        row.update(biasJson(rule.bias));
+        rules.push_back(row);
+    }
+    return rules;
+}
+
 void runThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
     const SweepTable table = readSweepTable(o.from);
-    const std::string sceneName = table.settings.value("scene", std::string());
-    if (sceneName.empty()) throw UsageError(o.from + ": the sweep names no scene");
-    scenes::Scene scene = scenes::loadScene(sceneName, table.settings.value("scene-seed", std::uint32_t(1)));
+    OptimizeOptions sweep = sweepOptions(table, o.from);
+    PreparedScene prepared = prepareScene(sweep);
+    scenes::Scene& scene = prepared.scene;
     if (scene.objects.size() != table.objects.size()) {
         throw UsageError(o.from + ": the sweep has " + std::to_string(table.objects.size()) + " objects, scene '" +
-                         sceneName + "' now " + std::to_string(scene.objects.size()));
+                         sweep.scene + "' now " + std::to_string(scene.objects.size()));
     }
-    int width = 0, height = 0;
-    parseSize(table.settings.value("size", std::string("512x512")), width, height);
     evaluation::ThresholdSettings settings;
     settings.fovYDegrees = sweepFov(table, o.fovYDegrees);
-    settings.aspect = double(width) / double(height);
+    settings.aspect = double(prepared.settings.width) / double(prepared.settings.height);
     settings.holdoutEvery = o.holdoutEvery;
-    std::vector<evaluation::ViewChoices> views;
+    settings.hysteresis = o.hysteresis;
+    settings.priorSamples = o.priorSamples;
+    std::vector<evaluation::ScoredView> views;
+    std::vector<evaluation::ViewChoices> choices;
     for (const SweepTableView& view : table.views) {
         if (!view.feasible) continue;  // all coarsest: nothing was chosen
-        views.push_back({view.levels, view.screenSizes, view.searched});
+        choices.push_back({view.levels, view.screenSizes, view.searched});
+        views.push_back({choices.back(), view.camera, view.fitness});
     }
-    const std::vector<evaluation::ObjectThresholds> results = evaluation::fitEngineThresholds(scene, views, settings);
+    if (views.empty()) throw UsageError(o.from + ": no view of the sweep meets its budget: nothing to fit");
+    // Each fitting view's level costs (evaluation/level_costs.hpp), unless the cheaper level error is asked for.
+    std::vector<evaluation::ViewLevelCosts> costs;
+    if (o.pricing == "measured") {
+        evaluation::SearchViewSettings viewSettings = searchViewSettings(sweep);
+        Progress progress("level costs", views.size(), output.quiet, Progress::Style::Lines);
+        for (std::size_t v = 0; v < views.size(); ++v) {
+            costs.push_back(evaluation::isHeldOutView(v, o.holdoutEvery)
+                                ? evaluation::ViewLevelCosts{}
+                                : evaluation::measureLevelCosts(scene, views[v].camera, choices[v], *prepared.renderer,
+                                                                prepared.metrics, prepared.estimator,
+                                                                prepared.readFeatures, viewSettings));
+            progress.update(v + 1, views[v].camera.name);
+        }
+        progress.finish();
+    }
+    std::vector<evaluation::ObjectThresholds> results =
+        evaluation::fitEngineThresholds(scene, choices, settings, costs);
+
+    // The tuned rule and the engines' defaults, each with its bias, compared on held-out views.
+    std::vector<evaluation::SwitchRuleThresholds> rules{{"tuned", {}}};
+    for (const evaluation::ObjectThresholds& r : results) rules.front().thresholds.push_back(r.fittedScreenSize);
+    for (evaluation::SwitchRuleThresholds& rule : evaluation::defaultSwitchRules(scene)) rules.push_back(std::move(rule));
+    evaluation::RuleComparisonSettings compare;
+    compare.budgetMs = sweep.budgetMs;
+    compare.holdoutEvery = o.holdoutEvery;
+    compare.width = prepared.settings.width;
+    compare.height = prepared.settings.height;
+    const evaluation::RuleComparison comparison =
+        evaluation::compareSwitchRules(scene, views, rules, *prepared.renderer, prepared.metrics, prepared.estimator,
+                                       prepared.readFeatures, compare);
+    const evaluation::LodBias tunedBias = comparison.rules.front().bias;
+    evaluation::applyLodBias(scene, results, tunedBias.bias, settings);
+    if (!tunedBias.meetsBudget) {
+        std::cerr << "lodopt: warning: even the coarsest levels the views need are predicted over the budget on "
+                     "average (" << tunedBias.meanPredictedMs << " ms > " << sweep.budgetMs << " ms)\n";
+    }
 
     nlohmann::json objects = nlohmann::json::array();
     int withLevels = 0, fitted = 0;
@@ -115,10 +209,14 @@ void runThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
     scenes::GltfExportOptions exportOptions;
     exportOptions.coverage = scenes::CoverageConvention::UnityRelativeHeight;
     scenes::exportGltf(scene, glb.string(), exportOptions);
+    auto numberOrNull = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
     nlohmann::json summary = {
         {"from", o.from},
-        {"scene", sceneName},
+        {"scene", sweep.scene},
+        {"budget_ms", sweep.budgetMs},
         {"views", views.size()},
+        {"fitting_views", comparison.fittingViews},
+        {"held_out_views", comparison.heldOutViews},
         {"holdout_every", o.holdoutEvery},
         {"fov_y_degrees", settings.fovYDegrees},
         {"aspect", settings.aspect},
@@ -126,18 +224,40 @@ void runThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
         {"fitted_objects", fitted},
         {"fit_agreement", fitWeight > 0 ? nlohmann::json(fitAgreement / fitWeight) : nlohmann::json()},
         {"held_out_agreement", heldOutWeight > 0 ? nlohmann::json(heldOutAgreement / heldOutWeight) : nlohmann::json()},
+        {"lod_bias", biasJson(tunedBias)},
+        {"hysteresis", settings.hysteresis},
+        {"prior_samples", settings.priorSamples},
+        {"pricing", o.pricing},
+        {"held_out", comparisonJson(comparison)},
+        {"held_out_reference",
+         {{"gain_views", comparison.gainViews},
+          {"optimizer_mean_fitness", numberOrNull(comparison.optimizerMeanFitness)},
+          {"coarsest_mean_fitness", numberOrNull(comparison.coarsestMeanFitness)}}},
         {"files", {(out / "thresholds.json").string(), glb.string()}}};
     nlohmann::json document = summary;
     document["format"] = "lodopt-thresholds";
-    document["version"] = 1;
+    document["version"] = 2;
     document["conventions"] = conventions();
     document["objects"] = objects;
     writeJsonFile((out / "thresholds.json").string(), document);
     if (output.json) return printJson(summary);
-    std::cout << "thresholds: " << fitted << " of " << withLevels << " objects with levels fitted on " << views.size()
-              << " views of " << sceneName << " (every " << o.holdoutEvery << "th held out); level agreement "
-              << jsonNumber(summary, "fit_agreement", NAN) << " fitted, " << jsonNumber(summary, "held_out_agreement", NAN)
-              << " held out (weighted by screen size squared)\n";
+    std::cout << "thresholds: " << fitted << " of " << withLevels << " objects with levels fitted on "
+              << comparison.fittingViews << " views of " << sweep.scene << " (" << comparison.heldOutViews
+              << " held out); level agreement " << jsonNumber(summary, "fit_agreement", NAN) << " fitted, "
+              << jsonNumber(summary, "held_out_agreement", NAN) << " held out (weighted by screen size squared)\n";
+    std::cout << "LOD bias " << tunedBias.bias << " (mean predicted " << tunedBias.meanPredictedMs
+              << " ms on the fitting views, budget " << sweep.budgetMs << " ms), baked into the thresholds; hysteresis "
+              << settings.hysteresis << " of the switch distance\n";
+    if (comparison.heldOutViews > 0) {
+        std::cout << "held out (" << comparison.heldOutViews << " views; optimizer mean fitness "
+                  << comparison.optimizerMeanFitness << ", all coarsest " << comparison.coarsestMeanFitness << "):\n";
+        std::printf("%-18s %9s %12s %13s %12s %11s\n", "rule", "lod bias", "mean fitness", "gain fraction",
+                    "over budget", "mean ms");
+        for (const evaluation::RuleOutcome& rule : comparison.rules) {
+            std::printf("%-18s %9.4g %12.6f %13.3f %12.3f %11.3f\n", rule.rule.c_str(), rule.bias.bias,
+                        rule.meanFitness, rule.gainFraction, rule.overBudgetShare, rule.meanPredictedMs);
+        }
+    }
     for (const auto& file : summary["files"]) std::cout << "wrote " << file.get<std::string>() << "\n";
 }
 
@@ -156,6 +276,20 @@ void addThresholdsCommand(CLI::App& app) {
     command->add_option("--fov", options->fovYDegrees,
                         "Vertical field of view (degrees) for the distance conventions (default: the sweep's)")
         ->check(CLI::Range(0.01, 179.0));
+    command->add_option("--prior-samples", options->priorSamples,
+                        "Weight of the rule shared by objects with as many levels, in an object's own samples (0: "
+                        "each object alone)")
+        ->check(CLI::Range(0.0, 1e6))
+        ->capture_default_str();
+    command->add_option("--pricing", options->pricing,
+                        "What a disagreement with the optimizer costs in the fit: measured (each level's fitness and "
+                        "time at each fitting view) or level-error (levels off, weighted by screen size squared)")
+        ->check(CLI::IsMember({"measured", "level-error"}))
+        ->capture_default_str();
+    command->add_option("--hysteresis", options->hysteresis,
+                        "Switch band as a fraction of the switch distance, for engines that have one")
+        ->check(CLI::Range(0.0, 0.9))
+        ->capture_default_str();
     addOutputOptions(*command, *output);
     command->callback([options, output] { runThresholds(*options, *output); });
 }

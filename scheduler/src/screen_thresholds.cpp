@@ -30,35 +30,49 @@ void checkSamples(std::span<const ThresholdSample> samples, int levelCount) {
     }
 }
 
-// Samples of equal screen size, in decreasing size: per level, the group's cost sum w |k - k_j|.
+void checkPricedSamples(std::span<const PricedSample> samples, int levelCount) {
+    if (levelCount < 1) throw std::invalid_argument("fitScreenThresholds: levelCount must be >= 1");
+    for (std::size_t j = 0; j < samples.size(); ++j) {
+        const PricedSample& s = samples[j];
+        const bool finiteCosts = std::all_of(s.levelCost.begin(), s.levelCost.end(), [](double c) { return std::isfinite(c); });
+        if (!(std::isfinite(s.screenSize) && s.screenSize > 0.0) || s.levelCost.size() != std::size_t(levelCount) ||
+            !finiteCosts) {
+            throw std::invalid_argument("fitScreenThresholds: priced sample " + std::to_string(j) +
+                                        " needs a finite screen size > 0 and " + std::to_string(levelCount) +
+                                        " finite level costs");
+        }
+    }
+}
+
+// Samples of equal screen size, in decreasing size: per level, the group's summed cost.
 struct Group {
     double screenSize = 0.0;
     std::vector<double> cost;
 };
 
-std::vector<Group> groupBySize(std::span<const ThresholdSample> samples, int levelCount) {
-    std::vector<ThresholdSample> sorted(samples.begin(), samples.end());
-    // A total order (size, then level, then weight), so each group sums its costs in one order
-    // whatever order the samples came in.
-    std::sort(sorted.begin(), sorted.end(), [](const ThresholdSample& a, const ThresholdSample& b) {
-        if (a.screenSize != b.screenSize) return a.screenSize > b.screenSize;
-        if (a.level != b.level) return a.level < b.level;
-        return a.weight < b.weight;
+std::vector<Group> groupBySize(std::span<const PricedSample> samples, int levelCount) {
+    std::vector<const PricedSample*> sorted;
+    for (const PricedSample& s : samples) sorted.push_back(&s);
+    // A total order (size, then the costs), so each group sums its costs in one order whatever
+    // order the samples came in.
+    std::sort(sorted.begin(), sorted.end(), [](const PricedSample* a, const PricedSample* b) {
+        if (a->screenSize != b->screenSize) return a->screenSize > b->screenSize;
+        return a->levelCost < b->levelCost;
     });
     std::vector<Group> groups;
-    for (const ThresholdSample& s : sorted) {
-        if (groups.empty() || groups.back().screenSize != s.screenSize) {
-            groups.push_back({s.screenSize, std::vector<double>(std::size_t(levelCount), 0.0)});
+    for (const PricedSample* s : sorted) {
+        if (groups.empty() || groups.back().screenSize != s->screenSize) {
+            groups.push_back({s->screenSize, std::vector<double>(std::size_t(levelCount), 0.0)});
         }
-        for (int k = 0; k < levelCount; ++k) groups.back().cost[std::size_t(k)] += s.weight * std::abs(k - s.level);
+        for (std::size_t k = 0; k < std::size_t(levelCount); ++k) groups.back().cost[k] += s->levelCost[k];
     }
     return groups;
 }
 
 }  // namespace
 
-ThresholdFit fitScreenThresholds(std::span<const ThresholdSample> samples, int levelCount) {
-    checkSamples(samples, levelCount);
+ThresholdFit fitScreenThresholdsToCosts(std::span<const PricedSample> samples, int levelCount) {
+    checkPricedSamples(samples, levelCount);
     ThresholdFit fit;
     const auto levels = std::size_t(levelCount);
     if (samples.empty()) {
@@ -104,6 +118,27 @@ ThresholdFit fitScreenThresholds(std::span<const ThresholdSample> samples, int l
         fit.thresholds.push_back(threshold);
     }
     double agreeing = 0.0;
+    for (const PricedSample& s : samples) {
+        fit.totalWeight += 1.0;
+        const auto cheapest = std::min_element(s.levelCost.begin(), s.levelCost.end()) - s.levelCost.begin();
+        if (levelForScreenSize(fit.thresholds, s.screenSize) == int(cheapest)) agreeing += 1.0;
+    }
+    fit.agreement = agreeing / fit.totalWeight;
+    return fit;
+}
+
+ThresholdFit fitScreenThresholds(std::span<const ThresholdSample> samples, int levelCount) {
+    checkSamples(samples, levelCount);
+    std::vector<PricedSample> priced;
+    priced.reserve(samples.size());
+    for (const ThresholdSample& s : samples) {
+        PricedSample p{s.screenSize, std::vector<double>(std::size_t(levelCount))};
+        for (int k = 0; k < levelCount; ++k) p.levelCost[std::size_t(k)] = s.weight * std::abs(k - s.level);
+        priced.push_back(std::move(p));
+    }
+    ThresholdFit fit = fitScreenThresholdsToCosts(priced, levelCount);
+    double agreeing = 0.0;
+    fit.totalWeight = 0.0;
     for (const ThresholdSample& s : samples) {
         fit.totalWeight += s.weight;
         if (levelForScreenSize(fit.thresholds, s.screenSize) == s.level) agreeing += s.weight;

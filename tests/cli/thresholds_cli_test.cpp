@@ -40,11 +40,40 @@ TEST(ThresholdsCli, FromASweepWritesEngineFilesThatLodoptReadsBack) {
     const nlohmann::json summary = nlohmann::json::parse(run.output);
     EXPECT_GE(summary["fitted_objects"].get<int>(), 1);
     EXPECT_EQ(summary["holdout_every"], 4);
+    EXPECT_EQ(summary["pricing"], "measured");
+    // The tuned rule and the defaults (the built-in harbor has no thresholds of its own), each
+    // with its bias, on the held-out views.
+    std::vector<std::string> rules;
+    for (const nlohmann::json& row : summary["held_out"]) {
+        rules.push_back(row["rule"].get<std::string>());
+        for (const char* key : {"mean_fitness", "over_budget_share", "lod_bias", "mean_predicted_ms"}) {
+            EXPECT_TRUE(row[key].is_number()) << row["rule"] << " " << key;
+        }
+        // Null only when no held-out view has a gain to share out.
+        EXPECT_EQ(row["gain_fraction"].is_number(), summary["held_out_reference"]["gain_views"].get<int>() > 0);
+        EXPECT_GT(row["lod_bias"].get<double>(), 0.0);
+        EXPECT_GT(row["mean_fitness"].get<double>(), 0.0);
+        EXPECT_LE(row["mean_fitness"].get<double>(), 1.0);
+        const double share = row["over_budget_share"].get<double>();
+        EXPECT_TRUE(share >= 0.0 && share <= 1.0) << share;
+    }
+    EXPECT_EQ(rules, (std::vector<std::string>{"tuned", "msft_default", "unitygltf_halving", "unreal_075"}));
+    const double bias = summary["lod_bias"]["lod_bias"].get<double>();
+    EXPECT_EQ(summary["held_out"][0]["lod_bias"].get<double>(), bias);
+    if (summary["lod_bias"]["meets_budget"].get<bool>()) {
+        EXPECT_LE(summary["lod_bias"]["fitting_mean_predicted_ms"].get<double>(), 0.6);
+    }
     const nlohmann::json document = readJson(folder / "out/thresholds.json");
     EXPECT_EQ(document["format"], "lodopt-thresholds");
     ASSERT_EQ(document["objects"].size(), 3u);
     for (const nlohmann::json& object : document["objects"]) {
         const auto sizes = object["screen_size"].get<std::vector<double>>();
+        // The bias is baked in: screen_size = fitted_screen_size / lod_bias.
+        const auto fitted = object["fitted_screen_size"].get<std::vector<double>>();
+        ASSERT_EQ(fitted.size(), sizes.size());
+        for (std::size_t k = 0; k < sizes.size(); ++k) {
+            EXPECT_NEAR(sizes[k] * bias / fitted[k], 1.0, 1e-12);
+        }
         ASSERT_EQ(int(sizes.size()), object["levels"].get<int>() - 1) << object["name"];
         EXPECT_TRUE(std::is_sorted(sizes.rbegin(), sizes.rend())) << object["name"];
         const auto unity = object["unity_relative_height"].get<std::vector<double>>();
@@ -52,7 +81,9 @@ TEST(ThresholdsCli, FromASweepWritesEngineFilesThatLodoptReadsBack) {
         for (std::size_t k = 0; k < sizes.size(); ++k) {
             EXPECT_LE(unity[k], sizes[k] * (1.0 + 1e-12));  // largest extent <= diameter
             EXPECT_GT(distance[k], 0.0);
-            if (k > 0) EXPECT_GE(distance[k], distance[k - 1]);  // coarser levels from farther away
+            if (k > 0) {
+                EXPECT_GE(distance[k], distance[k - 1]);  // coarser levels from farther away
+            }
         }
     }
     // lodopt reads the exported file's thresholds back as the same screen sizes (floats).
@@ -73,6 +104,17 @@ TEST(ThresholdsCli, FromASweepWritesEngineFilesThatLodoptReadsBack) {
                         "--quiet --out " + (folder / "optimize"))
                   .exitCode,
               0);
+    // A sweep of the exported file: its own thresholds are the "file" rule of the comparison.
+    ASSERT_EQ(runLodopt("sweep --scene " + glb + " --view-count 12 --size 64x64 --budget-ms 0.6 --max-evals 60 "
+                        "--threads 1 --quiet --out " + (folder / "sweep_glb"))
+                  .exitCode,
+              0);
+    const CommandResult again =
+        runLodopt("thresholds --from " + (folder / "sweep_glb") + " --out " + (folder / "out_glb") + " --json");
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    const nlohmann::json rows = nlohmann::json::parse(again.output)["held_out"];
+    ASSERT_EQ(rows.size(), 5u);
+    EXPECT_EQ(rows[1]["rule"], "file");
 }
 
 TEST(ThresholdsCli, BadInputIsRefusedWithExitCode2) {

@@ -13,17 +13,14 @@
 #include <string>
 #include <vector>
 
-#include "../cli/child_process.hpp"
-#include "../cli/run_lodopt.hpp"
+#include "harness_support.hpp"
 #include "renderer/renderer.hpp"
 
 namespace lodopt::harness_test {
 namespace {
 
 namespace fs = std::filesystem;
-using cli_test::runShell;
 
-const fs::path kHarness = fs::path(LODOPT_SOURCE_DIR) / "tests" / "harness";
 const fs::path kShared = LODOPT_SHARED_DATA_DIR;
 const fs::path kBoxTextured = kShared / "gltf/render-tests/BoxTextured/glTF/BoxTextured.gltf";
 // Ours: a white quad (metallic 0, roughness 1) facing the key light, its camera on the light's side.
@@ -38,60 +35,11 @@ const std::uint8_t* pixelAt(const renderer::LoadedImage& image, int x, int y) {
 
 constexpr std::uint8_t kSky[3] = {158, 194, 230};
 
-// `path` in single quotes for /bin/sh (the paths here hold no quote).
-std::string quoted(const fs::path& path) {
-    std::string text = path.string();
-    text.insert(text.begin(), '\'');
-    text.push_back('\'');
-    return text;
-}
-
 // The first of the views `lodopt scene info MODEL --json` gives.
 nlohmann::json firstView(const fs::path& model) {
     const auto info = cli_test::runLodopt("scene info " + quoted(model) + " --json");
     EXPECT_EQ(info.exitCode, 0) << model;
     return nlohmann::json::parse(info.output)["views"].at(0);
-}
-
-// What is missing to run the harnesses, with what installs it; empty when nothing is.
-std::string missingTools() {
-    std::string missing;
-    if (runShell("command -v node >/dev/null 2>&1").exitCode != 0) {
-        missing += "node is not on the PATH (apt-get install nodejs npm, or scripts/quickstart.sh); ";
-    }
-    for (const char* package : {"three", "gltf-validator", "gltfpack", "@gltf-transform/cli"}) {
-        if (!fs::exists(kHarness / "node_modules" / package / "package.json")) {
-            missing += std::string("npm package ") + package +
-                       " is not installed (npm ci --prefix tests/harness, or scripts/quickstart.sh); ";
-        }
-    }
-    const char* chromium = std::getenv("LODOPT_CHROMIUM");
-    const std::string probe = chromium
-                                  ? "test -x " + quoted(chromium)
-                                  : "command -v chromium || command -v chromium-browser || command -v google-chrome";
-    if (runShell(probe + " >/dev/null 2>&1").exitCode != 0) {
-        missing +=
-            "Chromium is not installed (apt-get install chromium, or scripts/quickstart.sh; or set LODOPT_CHROMIUM); ";
-    }
-    return missing;
-}
-
-struct NodeRun {
-    int exitCode = -1;
-    std::string out, err;
-    double seconds = 0.0;
-};
-
-// `node tests/harness/SCRIPT ARGUMENTS`, stdout and stderr kept apart.
-NodeRun runNode(const fs::path& errFile, const std::string& script, const std::string& arguments) {
-    const auto start = std::chrono::steady_clock::now();
-    const auto result = runShell("CI=1 node " + quoted(kHarness / script) + " " + arguments + " 2>" + quoted(errFile));
-    NodeRun run;
-    run.exitCode = result.exitCode;
-    run.out = result.output;
-    run.err = cli_test::slurp(errFile);
-    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return run;
 }
 
 class Harness : public testing::Test {

@@ -3,9 +3,7 @@
 // /result/<index>, then posts /done. three.js is set up to match lodopt's PBR rig
 // (docs/renderer.md, docs/harness.md "The rig"), not the other way round.
 import * as THREE from 'three';
-import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { DRACOLoader } from 'three/addons/loaders/DRACOLoader.js';
-import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
+import { makeCamera, makeLoader, post } from './page_common.mjs';
 
 // The key light travels along this world direction; it sits at -kKeyDirection.
 const kKeyDirection = new THREE.Vector3(-0.4, -1.0, -0.3).normalize();
@@ -13,9 +11,6 @@ const kKeyIlluminance = 2.5;
 // The sky: background bytes (158, 194, 230), never tone mapped.
 const kSky = new THREE.Color().setRGB(158 / 255, 194 / 255, 230 / 255, THREE.SRGBColorSpace);
 
-async function post(path, body) {
-    await fetch(path, { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) });
-}
 const log = (message) => post('/log', { message: String(message) });
 window.addEventListener('error', (event) => log(`page error: ${event.message}`));
 window.addEventListener('unhandledrejection', (event) => log(`unhandled rejection: ${event.reason}`));
@@ -50,35 +45,6 @@ function addRig(scene, { key = true, hemisphere = true } = {}) {
         scene.add(light);
     }
     scene.background = kSky;
-}
-
-// lodopt's camera (scenes::viewMatrix, projectionMatrix): glm::lookAt and glm::perspective,
-// including its replacement of an up vector parallel to the view direction.
-function makeCamera(view, aspect) {
-    const camera = new THREE.PerspectiveCamera(view.fov_y_degrees, aspect, view.near, view.far);
-    const position = new THREE.Vector3().fromArray(view.position);
-    const target = new THREE.Vector3().fromArray(view.target);
-    const forward = target.clone().sub(position);
-    let up = new THREE.Vector3().fromArray(view.up);
-    if (new THREE.Vector3().crossVectors(forward, up).length() < 1e-6 * forward.length()) {
-        up = Math.abs(forward.y) > Math.abs(forward.z) ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(0, 1, 0);
-    }
-    camera.position.copy(position);
-    camera.up.copy(up);
-    camera.lookAt(target);
-    camera.updateProjectionMatrix();
-    camera.updateMatrixWorld(true);
-    return camera;
-}
-
-function makeLoader(renderer) {
-    const draco = new DRACOLoader();
-    draco.setDecoderPath('/three/examples/jsm/libs/draco/');
-    draco.setDecoderConfig({ type: 'wasm' });
-    const loader = new GLTFLoader();
-    loader.setDRACOLoader(draco);
-    loader.setMeshoptDecoder(MeshoptDecoder);
-    return loader;
 }
 
 function dispose(root) {

@@ -3,7 +3,8 @@
 // (docs/harness.md). A loopback HTTP server (127.0.0.1, a free port) serves page.html, three.js
 // from node_modules and the models' folders, hands the page the list of jobs and receives one
 // PNG per job by POST; one Chromium process renders a whole batch. Nothing is fetched from
-// anywhere else.
+// anywhere else. The server and Chromium's launch are runPageInChromium, which lod_threejs.mjs
+// runs with its own page module (lod_page.mjs).
 //
 //   node render_threejs.mjs --model F.gltf --position X,Y,Z --target X,Y,Z [--up 0,1,0]
 //        [--fov 45] [--near 0.1] [--far 1000] [--size 256x256] --out image.png
@@ -74,26 +75,34 @@ function readBody(request) {
     });
 }
 
-// Renders `jobs` in one Chromium; resolves to one result per job: {ok, out?, ms?, error?} (and
-// {probes} for a probe job). Jobs: {model, view, width, height, out} or {kind: 'probe'}.
-// `jobTimeoutSeconds`: the longest wait for the next result before Chromium is killed and the
-// jobs left fail. Never rejects for a job's failure; rejects when Chromium cannot be found.
-export async function renderWithThreeJs(jobs, { chromium, jobTimeoutSeconds = 60, log = () => {} } = {}) {
+// The browser modules page.html may load (served as /harness/<name>): page.mjs renders,
+// lod_page.mjs runs THREE.LOD (lod_threejs.mjs); the others are modules they import.
+const kPageModules = new Set(['page.mjs', 'page_common.mjs', 'lod_page.mjs', 'msft_lod_plugin.mjs']);
+
+// The URL under which runPageInChromium serves `file`: its folder is added to `modelDirs` (served
+// as /model/<index>/...) when it is not there yet.
+export function modelUrl(modelDirs, file) {
+    const model = path.resolve(file);
+    const dir = path.dirname(model);
+    let id = modelDirs.indexOf(dir);
+    if (id < 0) id = modelDirs.push(dir) - 1;
+    return `/model/${id}/${encodeURIComponent(path.basename(model))}`;
+}
+
+// Runs the browser module `page` (one of kPageModules) in one headless Chromium on a loopback
+// server that serves page.html, three.js from node_modules and the folders in `modelDirs`, and
+// hands the page `jobs` at /jobs. Each POST /result/<index> calls `onResult(index, body)`; the
+// page ends with POST /done. `jobTimeoutSeconds`: the longest wait for the next result before
+// Chromium is killed. Resolves to {failure (null when the page finished), received (results)};
+// rejects when Chromium or three.js cannot be found.
+export async function runPageInChromium({ page = 'page.mjs', jobs, modelDirs = [], onResult, chromium, jobTimeoutSeconds = 60,
+                                          log = () => {} }) {
     const executable = findChromium(chromium);
     if (!executable) throw new Error('Chromium not found: install Debian\'s chromium (scripts/quickstart.sh does) or set LODOPT_CHROMIUM');
     if (!fs.existsSync(path.join(kThreeDir, 'build', 'three.module.js'))) {
         throw new Error(`three.js not found in ${kThreeDir}: run npm ci --prefix tests/harness (scripts/quickstart.sh does)`);
     }
-    const modelDirs = [];  // served as /model/<index>/...
-    const pageJobs = jobs.map((job) => {
-        if (job.kind === 'probe') return job;
-        const model = path.resolve(job.model);
-        const dir = path.dirname(model);
-        let id = modelDirs.indexOf(dir);
-        if (id < 0) id = modelDirs.push(dir) - 1;
-        return { url: `/model/${id}/${encodeURIComponent(path.basename(model))}`, view: job.view, width: job.width, height: job.height };
-    });
-    const results = jobs.map(() => ({ ok: false, error: 'not rendered' }));
+    if (!kPageModules.has(page)) throw new Error(`unknown page module ${page}`);
     let received = 0;
     let finish;
     const finished = new Promise((resolve) => { finish = resolve; });
@@ -104,8 +113,8 @@ export async function renderWithThreeJs(jobs, { chromium, jobTimeoutSeconds = 60
             const parts = url.pathname.split('/').slice(1).map(decodeURIComponent);
             if (request.method === 'GET') {
                 if (url.pathname === '/') return serveFile(response, kHarnessDir, 'page.html');
-                if (url.pathname === '/jobs') { response.writeHead(200, { 'Content-Type': 'application/json' }); return response.end(JSON.stringify(pageJobs)); }
-                if (parts[0] === 'harness' && parts[1] === 'page.mjs') return serveFile(response, kHarnessDir, 'page.mjs');
+                if (url.pathname === '/jobs') { response.writeHead(200, { 'Content-Type': 'application/json' }); return response.end(JSON.stringify(jobs)); }
+                if (parts[0] === 'harness' && parts.length === 2 && kPageModules.has(parts[1])) return serveFile(response, kHarnessDir, parts[1]);
                 if (parts[0] === 'three') return serveFile(response, kThreeDir, parts.slice(1).join('/'));
                 if (parts[0] === 'model' && modelDirs[Number(parts[1])] !== undefined) {
                     return serveFile(response, modelDirs[Number(parts[1])], parts.slice(2).join('/'));
@@ -121,17 +130,10 @@ export async function renderWithThreeJs(jobs, { chromium, jobTimeoutSeconds = 60
             if (parts[0] === 'done') return finish(body.error ? `page failed: ${body.error}` : null);
             if (parts[0] === 'result') {
                 const index = Number(parts[1]);
-                const job = jobs[index];
-                if (!job) return;
+                if (!(index >= 0 && index < jobs.length)) return;
                 ++received;
                 watchdog.refresh();
-                if (body.error) results[index] = { ok: false, error: body.error };
-                else if (job.kind === 'probe') results[index] = { ok: true, probes: body.probes, ms: body.ms };
-                else {
-                    const png = Buffer.from(body.png.replace(/^data:image\/png;base64,/, ''), 'base64');
-                    writeFileAtomically(job.out, png);
-                    results[index] = { ok: true, out: job.out, ms: body.ms, load_ms: body.load_ms };
-                }
+                onResult(index, body);
             }
         } catch (error) {
             log(`server: ${error.stack || error}`);
@@ -141,12 +143,13 @@ export async function renderWithThreeJs(jobs, { chromium, jobTimeoutSeconds = 60
     await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
     const port = server.address().port;
     const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'lodopt-chromium-'));
+    const pageQuery = page === 'page.mjs' ? '' : `?page=${encodeURIComponent(page)}`;
     const browser = spawn(executable, [
         '--headless', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
         `--user-data-dir=${profile}`, '--no-first-run', '--no-default-browser-check', '--disable-extensions',
         '--disable-background-networking', '--disable-component-update', '--disable-sync', '--mute-audio',
         '--disable-background-timer-throttling', '--disable-renderer-backgrounding',
-        `http://127.0.0.1:${port}/`,
+        `http://127.0.0.1:${port}/${pageQuery}`,
     ], { stdio: ['ignore', 'ignore', 'pipe'], detached: true });
     let browserErrors = '';
     browser.stderr.on('data', (chunk) => { browserErrors = (browserErrors + chunk).slice(-4000); });
@@ -160,7 +163,11 @@ export async function renderWithThreeJs(jobs, { chromium, jobTimeoutSeconds = 60
     browser.removeAllListeners('exit');
     if (browser.exitCode === null && browser.signalCode === null) {
         try { process.kill(-browser.pid, 'SIGKILL'); } catch { /* already gone */ }
-        await new Promise((resolve) => { browser.once('exit', resolve); setTimeout(resolve, 5000); });
+        // The 5 s fallback is cleared on exit: a pending timer would keep node alive 5 s longer.
+        await new Promise((resolve) => {
+            const fallback = setTimeout(resolve, 5000);
+            browser.once('exit', () => { clearTimeout(fallback); resolve(); });
+        });
     }
     server.closeAllConnections();
     server.close();
@@ -168,6 +175,33 @@ export async function renderWithThreeJs(jobs, { chromium, jobTimeoutSeconds = 60
     if (failure) {
         log(failure);
         if (received < jobs.length) log(`Chromium's last messages:\n${browserErrors}`);
+    }
+    return { failure, received };
+}
+
+// Renders `jobs` in one Chromium; resolves to one result per job: {ok, out?, ms?, error?} (and
+// {probes} for a probe job). Jobs: {model, view, width, height, out} or {kind: 'probe'}.
+// `jobTimeoutSeconds`: the longest wait for the next result before Chromium is killed and the
+// jobs left fail. Never rejects for a job's failure; rejects when Chromium cannot be found.
+export async function renderWithThreeJs(jobs, { chromium, jobTimeoutSeconds = 60, log = () => {} } = {}) {
+    const modelDirs = [];  // served as /model/<index>/...
+    const pageJobs = jobs.map((job) => {
+        if (job.kind === 'probe') return job;
+        return { url: modelUrl(modelDirs, job.model), view: job.view, width: job.width, height: job.height };
+    });
+    const results = jobs.map(() => ({ ok: false, error: 'not rendered' }));
+    const onResult = (index, body) => {
+        const job = jobs[index];
+        if (body.error) results[index] = { ok: false, error: body.error };
+        else if (job.kind === 'probe') results[index] = { ok: true, probes: body.probes, ms: body.ms };
+        else {
+            const png = Buffer.from(body.png.replace(/^data:image\/png;base64,/, ''), 'base64');
+            writeFileAtomically(job.out, png);
+            results[index] = { ok: true, out: job.out, ms: body.ms, load_ms: body.load_ms };
+        }
+    };
+    const { failure } = await runPageInChromium({ page: 'page.mjs', jobs: pageJobs, modelDirs, onResult, chromium, jobTimeoutSeconds, log });
+    if (failure) {
         for (const result of results) if (!result.ok && result.error === 'not rendered') result.error = failure;
     }
     return results;

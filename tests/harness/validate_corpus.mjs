@@ -44,14 +44,27 @@ export function findModels(dir) {
     return found;
 }
 
-// The validator's report of `file` with its external resources read from beside it.
-async function validate(validator, file) {
+// The Khronos glTF-Validator (npm gltf-validator in node_modules).
+export function loadValidator() {
+    const require = createRequire(import.meta.url);
+    return require(path.join(kHarnessDir, 'node_modules', 'gltf-validator'));
+}
+
+// The validator's whole report of `file` with its external resources read from beside it
+// (report.issues: numErrors, numWarnings, numInfos, numHints, messages with code, severity 0-3
+// for error, warning, info, hint, and pointer).
+export async function validatorReport(validator, file) {
     const bytes = new Uint8Array(fs.readFileSync(file));
-    const report = await validator.validateBytes(bytes, {
+    return validator.validateBytes(bytes, {
         uri: path.basename(file), maxIssues: 0, writeTimestamp: false,
         externalResourceFunction: (uri) => fs.promises.readFile(path.resolve(path.dirname(file), decodeURIComponent(uri)))
             .then((data) => new Uint8Array(data)),
     });
+}
+
+// The validator's verdict on `file`: its error count, error codes and required extensions.
+async function validate(validator, file) {
+    const report = await validatorReport(validator, file);
     const errors = report.issues.messages.filter((m) => m.severity === 0).map((m) => m.code);
     return { errors: report.issues.numErrors, codes: [...new Set(errors)], required: report.info?.extensionsRequired || [] };
 }
@@ -128,8 +141,7 @@ async function pack(model, name, dir, problems) {
 
 // Runs the whole check; resolves to {files: [...], summary, violations, problems}.
 export async function checkCorpus({ data, lodopt, pack: packWhich = 'none', packDir, known = {}, concurrency = 2, validOnly = false }) {
-    const require = createRequire(import.meta.url);
-    const validator = require(path.join(kHarnessDir, 'node_modules', 'gltf-validator'));
+    const validator = loadValidator();
     const inputs = [...findModels(path.join(data, 'gltf')), ...findModels(path.join(data, 'gltf-invalid'))]
         .map((file) => ({ file, packedBy: '', source: '' }));
     const problems = [];

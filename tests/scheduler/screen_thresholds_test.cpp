@@ -114,6 +114,77 @@ TEST(ScreenThresholds, MatchesExhaustiveSearchOnRandomInstances) {
     }
 }
 
+// The priced fit against every non-decreasing assignment on random instances with arbitrary
+// (also negative) level costs.
+TEST(ScreenThresholds, PricedFitMatchesExhaustiveSearchOnRandomInstances) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> cost(-1.0, 2.0);
+    for (int instance = 0; instance < 200; ++instance) {
+        const int levels = 1 + int(random() % 4);
+        const int count = 1 + int(random() % 6);
+        std::vector<PricedSample> samples;
+        for (int j = 0; j < count; ++j) {
+            PricedSample sample{0.01 * double(1 + random() % 4), {}};
+            for (int k = 0; k < levels; ++k) sample.levelCost.push_back(cost(random));
+            samples.push_back(sample);
+        }
+        std::vector<double> sizes;
+        for (const PricedSample& s : samples) sizes.push_back(s.screenSize);
+        std::sort(sizes.rbegin(), sizes.rend());
+        sizes.erase(std::unique(sizes.begin(), sizes.end()), sizes.end());
+        double best = std::numeric_limits<double>::infinity();
+        std::vector<int> assignment(sizes.size(), 0);
+        std::function<void(std::size_t, int)> visit = [&](std::size_t g, int low) {
+            if (g == sizes.size()) {
+                double total = 0.0;
+                for (const PricedSample& s : samples) {
+                    const auto at = std::find(sizes.begin(), sizes.end(), s.screenSize) - sizes.begin();
+                    total += s.levelCost[std::size_t(assignment[std::size_t(at)])];
+                }
+                best = std::min(best, total);
+                return;
+            }
+            for (int k = low; k < levels; ++k) {
+                assignment[g] = k;
+                visit(g + 1, k);
+            }
+        };
+        visit(0, 0);
+        const ThresholdFit fit = fitScreenThresholdsToCosts(samples, levels);
+        EXPECT_NEAR(fit.cost, best, 1e-9) << "instance " << instance;
+        double ruleCost = 0.0;
+        for (const PricedSample& s : samples) {
+            ruleCost += s.levelCost[std::size_t(levelForScreenSize(fit.thresholds, s.screenSize))];
+        }
+        EXPECT_NEAR(ruleCost, fit.cost, 1e-9) << "instance " << instance;
+        EXPECT_TRUE(std::is_sorted(fit.thresholds.rbegin(), fit.thresholds.rend())) << "instance " << instance;
+    }
+}
+
+TEST(ScreenThresholds, PricedFitHandWorked) {
+    // Level 1 is cheapest at 0.5 and 0.3, level 0 at 0.8, level 2 at 0.1: thresholds between.
+    const std::vector<PricedSample> samples = {{0.8, {0.0, 0.2, 0.5}},
+                                               {0.5, {0.1, 0.0, 0.3}},
+                                               {0.3, {0.2, 0.0, 0.1}},
+                                               {0.1, {0.4, 0.1, 0.0}}};
+    const ThresholdFit fit = fitScreenThresholdsToCosts(samples, 3);
+    ASSERT_EQ(fit.thresholds.size(), 2u);
+    EXPECT_NEAR(fit.thresholds[0], std::sqrt(0.8 * 0.5), 1e-12);
+    EXPECT_NEAR(fit.thresholds[1], std::sqrt(0.3 * 0.1), 1e-12);
+    EXPECT_DOUBLE_EQ(fit.cost, 0.0);
+    EXPECT_DOUBLE_EQ(fit.agreement, 1.0);
+    // A sample that prefers a finer level at a smaller size than another's coarser choice costs
+    // the cheaper of the two ways to stay monotone.
+    const std::vector<PricedSample> crossing = {{0.5, {1.0, 0.0}}, {0.3, {0.0, 0.3}}};
+    const ThresholdFit monotone = fitScreenThresholdsToCosts(crossing, 2);
+    EXPECT_DOUBLE_EQ(monotone.cost, 0.3);  // both at level 1 (0 + 0.3), not both at 0 (1 + 0)
+    EXPECT_EQ(levelForScreenSize(monotone.thresholds, 0.5), 1);
+    EXPECT_EQ(levelForScreenSize(monotone.thresholds, 0.3), 1);
+    EXPECT_THROW(fitScreenThresholdsToCosts(std::vector<PricedSample>{{0.1, {0.0}}}, 2), std::invalid_argument);
+    EXPECT_THROW(fitScreenThresholdsToCosts(std::vector<PricedSample>{{0.1, {0.0, NAN}}}, 2), std::invalid_argument);
+    EXPECT_THROW(fitScreenThresholdsToCosts(std::vector<PricedSample>{{0.0, {0.0, 1.0}}}, 2), std::invalid_argument);
+}
+
 TEST(ScreenThresholds, RefusesUnusableSamples) {
     const std::vector<std::vector<ThresholdSample>> bad = {
         {{0.0, 0, 1.0}}, {{-1.0, 0, 1.0}}, {{NAN, 0, 1.0}}, {{0.1, 3, 1.0}}, {{0.1, -1, 1.0}}, {{0.1, 0, -1.0}},

@@ -44,4 +44,17 @@ int levelForScreenSize(std::span<const double> thresholds, double screenSize);
 // 1, 1/2, 1/4, ... (nothing to fit).
 ThresholdFit fitScreenThresholds(std::span<const ThresholdSample> samples, int levelCount);
 
+// The same fit with each sample's disagreements priced per level: levelCost[k] is what drawing
+// level k at that screen size costs (any finite values; only differences between levels matter).
+// Minimises the summed cost of the levels the rule draws; the level error above is the case
+// levelCost[k] = weight |k - level|. `agreement` is the unweighted share of samples whose
+// cheapest level the rule draws, `totalWeight` the sample count. Throws std::invalid_argument
+// for levelCount < 1, or a sample with a non-finite or non-positive screen size, or without
+// levelCount finite costs. No samples: the halving chain.
+struct PricedSample {
+    double screenSize = 0.0;
+    std::vector<double> levelCost;
+};
+ThresholdFit fitScreenThresholdsToCosts(std::span<const PricedSample> samples, int levelCount);
+
 }  // namespace lodopt::scheduler
