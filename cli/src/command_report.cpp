@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum class Kind { Optimize, Compare, Schedule, Tune, Profile, Bench, Sweep };
+enum class Kind { Optimize, Compare, Schedule, Tune, Profile, Bench, Sweep, Thresholds };
 
 const char* kindName(Kind kind) {
     switch (kind) {
@@ -39,6 +39,8 @@ const char* kindName(Kind kind) {
             return "bench";
         case Kind::Sweep:
             return "sweep";
+        case Kind::Thresholds:
+            return "thresholds";
     }
     return "?";
 }
@@ -79,6 +81,10 @@ bool classifyJson(const fs::path& file, std::vector<Found>& found) {
     const std::string format = jsonText(document, "format");
     if (format.rfind("lodopt-device-profile", 0) == 0) {
         found.push_back({Kind::Profile, file});
+        return true;
+    }
+    if (format == "lodopt-thresholds") {
+        found.push_back({Kind::Thresholds, file});
         return true;
     }
     return false;
@@ -150,12 +156,12 @@ std::vector<Found> findOutputs(const fs::path& input, const fs::path& plotDir, s
     } else if (input.extension() != ".json" || !classifyJson(input, found)) {
         throw UsageError(name +
                          ": not an output lodopt report knows (a folder of optimize, compare, "
-                         "schedule, bench or sweep, a tune coefficients file or a calibrate profile)");
+                         "schedule, bench or sweep, a tune coefficients file, a calibrate profile or a thresholds.json)");
     }
     if (found.empty()) {
         throw UsageError(name +
                          ": no output of optimize (result.json), compare (compare.json), schedule "
-                         "(frames.csv), bench (bench.json), sweep (sweep.json), tune or calibrate found");
+                         "(frames.csv), bench (bench.json), sweep (sweep.json), tune, calibrate or thresholds found");
     }
     return found;
 }
@@ -182,6 +188,9 @@ void addSection(ReportContext& context, const Found& item) {
             break;
         case Kind::Sweep:
             addSweepSection(context, item.path);
+            break;
+        case Kind::Thresholds:
+            addThresholdsSection(context, item.path, readJsonFile(item.path.string()));
             break;
     }
 }

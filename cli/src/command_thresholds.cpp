@@ -277,8 +277,8 @@ void addThresholdsCommand(CLI::App& app) {
                         "Vertical field of view (degrees) for the distance conventions (default: the sweep's)")
         ->check(CLI::Range(0.01, 179.0));
     command->add_option("--prior-samples", options->priorSamples,
-                        "Weight of the rule shared by objects with as many levels, in an object's own samples (0: "
-                        "each object alone)")
+                        "Weight of the rule shared by objects with as many levels in each object's fit, in the object's "
+                        "own samples (0: each object alone)")
         ->check(CLI::Range(0.0, 1e6))
         ->capture_default_str();
     command->add_option("--pricing", options->pricing,

@@ -10,7 +10,10 @@
 //   calibrate a device profile: error per time model, predicted against measured per sample;
 //   bench     bench.json and its CSVs (report_bench.hpp);
 //   sweep     sweep.json (+ sweep_timing.csv): fitness and predicted time per view, the chosen
-//             level against screen size over every object and view, views per rank.
+//             level against screen size over every object and view, views per rank;
+//   thresholds  thresholds.json: the rules on the held-out views, and for the objects the most
+//             views searched, the optimizer's choices against screen size with the exported
+//             switch points drawn over them (needs the sweep it names).
 // Each function reads its files (bad content → UsageError naming the file), writes its plots
 // through the Plotter and appends HTML. A missing optional file leaves out what needs it.
 #pragma once
@@ -48,6 +51,7 @@ void addScheduleSection(ReportContext& context, const std::filesystem::path& fra
 void addTuneSection(ReportContext& context, const std::filesystem::path& file, const nlohmann::json& document);
 void addProfileSection(ReportContext& context, const std::filesystem::path& file);
 void addSweepSection(ReportContext& context, const std::filesystem::path& folder);
+void addThresholdsSection(ReportContext& context, const std::filesystem::path& file, const nlohmann::json& document);
 
 // Top-level scalars of `document` (and one level of nested objects as "outer.inner") as table
 // rows, for summary files whose fields the report does not know one by one.

@@ -107,11 +107,9 @@ std::vector<ObjectThresholds> fitEngineThresholds(const scenes::Scene& scene, st
     // The pooled samples of all objects with the same level count: the shared rule each object's
     // own samples are weighed against.
     std::map<int, std::vector<scheduler::PricedSample>> pooled;
-    if (settings.priorSamples > 0.0) {
-        for (std::size_t i = 0; i < objects; ++i) {
-            std::vector<scheduler::PricedSample>& list = pooled[int(scene.objects[i].levels.size())];
-            list.insert(list.end(), fitting[i].begin(), fitting[i].end());
-        }
+    for (std::size_t i = 0; i < objects; ++i) {
+        std::vector<scheduler::PricedSample>& list = pooled[int(scene.objects[i].levels.size())];
+        list.insert(list.end(), fitting[i].begin(), fitting[i].end());
     }
     std::vector<ObjectThresholds> results(objects);
     for (std::size_t i = 0; i < objects; ++i) {
@@ -121,7 +119,7 @@ std::vector<ObjectThresholds> fitEngineThresholds(const scenes::Scene& scene, st
         r.levelCount = int(object.levels.size());
         std::vector<scheduler::PricedSample> samples = fitting[i];
         const auto shared = pooled.find(r.levelCount);
-        if (shared != pooled.end() && !shared->second.empty()) {
+        if (shared != pooled.end() && !shared->second.empty() && (samples.empty() || settings.priorSamples > 0.0)) {
             double own = 0.0, all = 0.0;
             for (const scheduler::PricedSample& sample : samples) own += spread(sample);
             for (const scheduler::PricedSample& sample : shared->second) all += spread(sample);

@@ -104,6 +104,24 @@ TEST(ThresholdsCli, FromASweepWritesEngineFilesThatLodoptReadsBack) {
                         "--quiet --out " + (folder / "optimize"))
                   .exitCode,
               0);
+    // The report draws the rules' table and, per object, the choices with the switch points; the
+    // plot's data are the sweep's choices of that object.
+    const std::string html = folder / "report.html";
+    ASSERT_EQ(runLodopt("report " + (folder / "out/thresholds.json") + " --out " + html).exitCode, 0);
+    std::ifstream htmlStream(html);
+    const std::string page((std::istreambuf_iterator<char>(htmlStream)), std::istreambuf_iterator<char>());
+    EXPECT_NE(page.find("thresholds: harbor"), std::string::npos);
+    EXPECT_NE(page.find("unitygltf_halving"), std::string::npos);
+    EXPECT_NE(page.find("the exported switch points"), std::string::npos);
+    int plotted = 0;
+    for (const auto& entry : fs::directory_iterator(folder / "report_files")) {
+        const std::string name = entry.path().filename().string();
+        if (name.find("_fit.dat") == std::string::npos) continue;
+        std::ifstream data(entry.path());
+        std::string line;
+        while (std::getline(data, line)) plotted += line.empty() || line[0] == '#' ? 0 : 1;
+    }
+    EXPECT_GT(plotted, 0);
     // A sweep of the exported file: its own thresholds are the "file" rule of the comparison.
     ASSERT_EQ(runLodopt("sweep --scene " + glb + " --view-count 12 --size 64x64 --budget-ms 0.6 --max-evals 60 "
                         "--threads 1 --quiet --out " + (folder / "sweep_glb"))

@@ -102,9 +102,12 @@ TEST(EngineThresholds, ObjectsFewViewsSawLeanOnTheRuleTheirPeersShare) {
     EXPECT_DOUBLE_EQ(pooled[1].fitAgreement, 0.0);  // its own choice is outvoted
     // An object with levels that no view searched takes the shared rule.
     const std::vector<ViewChoices> seenOnly = {views[0], views[1], views[2], {{1, 2}, {0.3, 0.8}, {0}}};
-    const std::vector<ObjectThresholds> unseen = fitEngineThresholds(scene, seenOnly, settings);
-    EXPECT_FALSE(unseen[1].fitted);
-    EXPECT_EQ(unseen[1].screenSize, unseen[0].screenSize);
+    for (double prior : {4.0, 0.0}) {
+        settings.priorSamples = prior;
+        const std::vector<ObjectThresholds> unseen = fitEngineThresholds(scene, seenOnly, settings);
+        EXPECT_FALSE(unseen[1].fitted);
+        EXPECT_EQ(unseen[1].screenSize, unseen[0].screenSize) << prior;
+    }
 }
 
 TEST(EngineThresholds, MeasuredCostsPriceEachLevel) {

@@ -6,13 +6,12 @@
 // fitness, time converted at the view's exchange rate (level_costs.hpp, measured), or else by the
 // level error weighted by the square of the screen size (the object's share of the view's pixels
 // up to a constant). scheduler::fitScreenThresholdsToCosts gives the thresholds that minimise
-// the summed price. An object seen in a few views only would get thresholds pinned by those few
-// (a building met once at level 0 keeps level 0 down to half that size everywhere), so each
-// object's samples are weighed against the pooled samples of every object with as many levels,
-// which count as `priorSamples` of the object's own average sample: objects seen often follow
-// their own choices, objects seen rarely the shared rule, objects never searched take it whole
-// (`fitted` false; the halving chain 1, 1/2, 1/4, ... where no object of that level count was
-// searched). Views held out of the fit (every holdoutEvery-th view) measure how well the rule
+// the summed price. Objects no fitting view searched take the rule fitted to the pooled samples
+// of every object with as many levels (`fitted` false; the halving chain 1, 1/2, 1/4, ... where
+// no object of that level count was searched). Optionally (`priorSamples` > 0) every object's
+// own samples are weighed against that pool too, which counts as `priorSamples` of the object's
+// own average sample: an object seen in a few views only then leans on the shared rule instead of
+// being pinned by those few. Views held out of the fit (every holdoutEvery-th view) measure how well the rule
 // predicts choices it has not seen. docs/thresholds.md.
 #pragma once
 
@@ -49,8 +48,10 @@ struct ThresholdSettings {
     // at distance d goes finer again only closer than d (1 - hysteresis). The default is the
     // scheduler's switch-control margin (scheduler::SwitchControlParameters::raiseMargin).
     // How much the shared rule (every object with the same level count, pooled) weighs in each
-    // object's fit, in the object's own average samples; 0: each object alone.
-    double priorSamples = 4.0;
+    // searched object's fit, in the object's own average samples; 0: each object alone (objects
+    // never searched still take the shared rule). 0 by default: with measured level costs the
+    // pool lowered the held-out fitness on every sweep measured (docs/thresholds.md).
+    double priorSamples = 0.0;
     double hysteresis = scheduler::SwitchControlParameters{}.raiseMargin;  // [0, 1)
 };
 
