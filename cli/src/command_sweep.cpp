@@ -30,27 +30,12 @@
 #include "scenes/viewpoints.hpp"
 #include "sweep_files.hpp"
 #include "sweep_queue.hpp"
+#include "sweep_run.hpp"
 #include "timemodel/calibration.hpp"
 
 namespace lodopt::cli {
 namespace {
 
-struct SweepOptions {
-    OptimizeOptions optimize;
-    int viewCount = 0;
-    std::string path;
-    std::string grid;
-    std::string gridBox;
-    std::string cameras;
-    std::uint64_t sampleSeed = 1;
-    std::string out = "out/sweep";
-    bool resume = false;
-    std::string shard;
-    std::vector<std::string> merge;
-    std::string scaling;                      // a finished sweep folder to model the ranks of
-    std::string scalingRanks = "1,2,4,8,16,32,64";
-    long scalingViews = 0;                    // 0: the folder's view count
-};
 
 // The options that change a view's answer (checkIdentity); the cameras are in the plan itself.
 nlohmann::json settingsSignature(const SweepOptions& o) {
@@ -377,7 +362,7 @@ void runSweep(SweepOptions o, const OutputOptions& output) {
                                          {"merge_seconds", std::chrono::duration<double>(end - mergeStart).count()},
                                          {"wall_seconds", seconds}});
         merged.files.push_back(runFile.string());
-        printSummary(summaryJson(o, plan, merged, queue->ranks(), run, seconds), output.json);
+        if (o.printSummary) printSummary(summaryJson(o, plan, merged, queue->ranks(), run, seconds), output.json);
     } catch (const Interrupted& interrupted) {
         if (!session) throw;
         if (rank == 0) std::cerr << "lodopt: " << interrupted.what() << "\n";
@@ -395,6 +380,27 @@ void runSweep(SweepOptions o, const OutputOptions& output) {
 
 }  // namespace
 
+void runSweepCommand(const SweepOptions& options, const OutputOptions& output) { runSweep(options, output); }
+
+void addSweepSources(CLI::App& command, SweepOptions& options) {
+    command.add_option("--grid", options.grid, "Camera grid CxRxD@H[/P]: columns x rows x directions at height H, "
+                                                "pitch P degrees (default -10) over the scene's footprint");
+    command.add_option("--grid-box", options.gridBox, "The grid's ground box MIN_X,MIN_Z,MAX_X,MAX_Z");
+    command.add_option("--path", options.path, "Every frame of a camera path (name or JSON file)");
+    command.add_option("--view-count", options.viewCount, "Views sampled around the scene's views")
+        ->check(CLI::Range(1, 10000000));
+    command.add_option("--sample-seed", options.sampleSeed, "Seed of the sampled views (--view-count)")
+        ->capture_default_str();
+    command.add_option("--cameras", options.cameras,
+                       "JSON list of cameras (position, target, up, fov_y_degrees, near, far, name)");
+    addSearchOptions(command, options.optimize);
+    command.remove_option(command.get_option("--budget-ms"));
+    command.add_option("--budget-ms", options.optimize.budgetMs, "Predicted render-time budget in milliseconds")
+        ->check(CLI::PositiveNumber);
+    command.add_option("--algo", options.optimize.algorithm, "Algorithm per view: " + algorithmList())
+        ->capture_default_str();
+}
+
 void addSweepCommand(CLI::App& app) {
     auto options = std::make_shared<SweepOptions>();
     auto output = std::make_shared<OutputOptions>();
@@ -402,22 +408,7 @@ void addSweepCommand(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "sweep", "Optimize every viewpoint of a grid, path or camera list (one machine, --shard or mpirun)");
     addSceneOption(*command, options->optimize.scene);
-    command->add_option("--grid", options->grid, "Camera grid CxRxD@H[/P]: columns x rows x directions at height H, "
-                                                  "pitch P degrees (default -10) over the scene's footprint");
-    command->add_option("--grid-box", options->gridBox, "The grid's ground box MIN_X,MIN_Z,MAX_X,MAX_Z");
-    command->add_option("--path", options->path, "Every frame of a camera path (name or JSON file)");
-    command->add_option("--view-count", options->viewCount, "Views sampled around the scene's views")
-        ->check(CLI::Range(1, 10000000));
-    command->add_option("--sample-seed", options->sampleSeed, "Seed of the sampled views (--view-count)")
-        ->capture_default_str();
-    command->add_option("--cameras", options->cameras,
-                        "JSON list of cameras (position, target, up, fov_y_degrees, near, far, name)");
-    addSearchOptions(*command, options->optimize);
-    command->remove_option(command->get_option("--budget-ms"));
-    command->add_option("--budget-ms", options->optimize.budgetMs, "Predicted render-time budget in milliseconds")
-        ->check(CLI::PositiveNumber);
-    command->add_option("--algo", options->optimize.algorithm, "Algorithm per view: " + algorithmList())
-        ->capture_default_str();
+    addSweepSources(*command, *options);
     command->add_option("--out", options->out, "Output folder")->capture_default_str();
     addResumeFlag(*command, options->resume, "the view files of an interrupted sweep (any number of ranks)");
     command->add_option("--shard", options->shard, "Run only views i, i+N, ... (i/N), for job arrays without MPI");

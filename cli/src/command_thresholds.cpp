@@ -18,12 +18,14 @@
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
 #include "sweep_files.hpp"
+#include "sweep_run.hpp"
 
 namespace lodopt::cli {
 namespace {
 
 struct ThresholdsOptions {
     std::string from;
+    SweepOptions sweep;  // without --from: the views to sweep first, into <out>/sweep
     std::string out = "out/thresholds";
     int holdoutEvery = 4;
     double fovYDegrees = 0.0;  // 0: the sweep's cameras' (which must agree)
@@ -124,7 +126,7 @@ nlohmann::json comparisonJson(const evaluation::RuleComparison& comparison) {
     return rules;
 }
 
-void runThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
+void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
     const SweepTable table = readSweepTable(o.from);
     OptimizeOptions sweep = sweepOptions(table, o.from);
     PreparedScene prepared = prepareScene(sweep);
@@ -261,6 +263,25 @@ void runThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
     for (const auto& file : summary["files"]) std::cout << "wrote " << file.get<std::string>() << "\n";
 }
 
+// Without --from: sweep the given views into <out>/sweep first (resumed when it is there already,
+// so a second run with other fitting options reuses the views), then fit on it.
+void runThresholds(ThresholdsOptions o, const OutputOptions& output) {
+    const bool sweeps = !o.sweep.optimize.scene.empty();
+    if (sweeps == !o.from.empty()) {
+        throw UsageError("thresholds: give --from SWEEP, or --scene S with the views to sweep (--view-count, --path, "
+                         "--grid or --cameras) and --budget-ms");
+    }
+    if (sweeps) {
+        if (!(o.sweep.optimize.budgetMs > 0.0)) throw UsageError("thresholds --scene: --budget-ms is required");
+        o.sweep.out = (std::filesystem::path(o.out) / "sweep").string();
+        o.sweep.resume = true;
+        o.sweep.printSummary = false;
+        runSweepCommand(o.sweep, output);
+        o.from = o.sweep.out;
+    }
+    fitThresholds(o, output);
+}
+
 }  // namespace
 
 void addThresholdsCommand(CLI::App& app) {
@@ -268,7 +289,13 @@ void addThresholdsCommand(CLI::App& app) {
     auto output = std::make_shared<OutputOptions>();
     CLI::App* command = app.add_subcommand(
         "thresholds", "Fit per-object screen-size LOD switch thresholds to a sweep and write them for engines");
-    command->add_option("--from", options->from, "A finished sweep (folder or sweep.json)")->required();
+    options->sweep.optimize.scene.clear();  // no sweep unless --scene is given
+    options->sweep.optimize.seedFrom = "screensize,mckp";  // as sweep
+    command->add_option("--from", options->from, "A finished sweep (folder or sweep.json)");
+    auto* scene = command->add_option("--scene", options->sweep.optimize.scene,
+                                      "Without --from: sweep this scene first (into <out>/sweep), with the views below");
+    addSweepSources(*command, options->sweep);
+    scene->excludes(command->get_option("--from"));
     command->add_option("--out", options->out, "Output folder")->capture_default_str();
     command->add_option("--holdout-every", options->holdoutEvery, "Hold every Nth view out of the fit (0: none)")
         ->check(CLI::Range(0, 1000000))

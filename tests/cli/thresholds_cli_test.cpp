@@ -104,6 +104,12 @@ TEST(ThresholdsCli, FromASweepWritesEngineFilesThatLodoptReadsBack) {
                         "--quiet --out " + (folder / "optimize"))
                   .exitCode,
               0);
+    // Without --from, thresholds sweeps the same views itself (into <out>/sweep): the same fit.
+    const CommandResult sampled = runLodopt("thresholds --scene harbor --view-count 12 --size 64x64 --budget-ms 0.6 "
+                                            "--max-evals 60 --threads 1 --quiet --out " + (folder / "sampled"));
+    ASSERT_EQ(sampled.exitCode, 0) << sampled.output;
+    EXPECT_TRUE(fs::exists(folder / "sampled/sweep/sweep.json"));
+    EXPECT_EQ(readJson(folder / "sampled/thresholds.json")["objects"], document["objects"]);
     // The report draws the rules' table and, per object, the choices with the switch points; the
     // plot's data are the sweep's choices of that object.
     const std::string html = folder / "report.html";
@@ -138,7 +144,13 @@ TEST(ThresholdsCli, FromASweepWritesEngineFilesThatLodoptReadsBack) {
 TEST(ThresholdsCli, BadInputIsRefusedWithExitCode2) {
     Folder folder;
     EXPECT_EQ(runLodopt("thresholds --from " + (folder / "missing") + " --out " + (folder / "out")).exitCode, 2);
-    EXPECT_EQ(runLodopt("thresholds --out " + (folder / "out")).exitCode, 2);  // --from is required
+    // A sweep source and --from, neither, or a sweep without a budget.
+    EXPECT_EQ(runLodopt("thresholds --from " + (folder / "missing") + " --scene harbor --view-count 2 --budget-ms 1 "
+                        "--out " + (folder / "out")).exitCode,
+              2);
+    EXPECT_EQ(runLodopt("thresholds --out " + (folder / "out")).exitCode, 2);
+    EXPECT_EQ(runLodopt("thresholds --scene harbor --view-count 2 --out " + (folder / "out")).exitCode, 2);
+    EXPECT_FALSE(fs::exists(folder / "out"));
     // Cameras with two fields of view: the distance conventions need --fov.
     std::ofstream(folder / "cameras.json")
         << R"([{"position": [0, 3, 30], "target": [0, 0, 0], "fov_y_degrees": 40},)"
