@@ -14,6 +14,7 @@
 #include "evaluation/switch_rules.hpp"
 #include "optimize_run.hpp"
 #include "progress.hpp"
+#include "schedule_common.hpp"
 #include "report_data.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
@@ -32,6 +33,7 @@ struct ThresholdsOptions {
     double hysteresis = evaluation::ThresholdSettings{}.hysteresis;
     double priorSamples = evaluation::ThresholdSettings{}.priorSamples;
     std::string pricing = "measured";  // or "level-error"
+    std::string switchPath;            // camera path to count switches on; empty: the scene's first
 };
 
 double sweepFov(const SweepTable& table, double given) {
@@ -181,6 +183,25 @@ void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
                                        prepared.readFeatures, compare);
     const evaluation::LodBias tunedBias = comparison.rules.front().bias;
     evaluation::applyLodBias(scene, results, tunedBias.bias, settings);
+    // Level switches of the exported rule along a camera path, without and with the band.
+    nlohmann::json pathSwitches;
+    if (!o.switchPath.empty() || !scene.paths.empty()) {
+        const scenes::CameraPath path = o.switchPath.empty() ? scene.paths.front() : loadCameraPath(scene, o.switchPath);
+        evaluation::ObjectThresholdList exported;
+        for (const evaluation::ObjectThresholds& r : results) exported.push_back(r.screenSize);
+        const evaluation::RuleSwitches plain = evaluation::countRuleSwitches(scene, exported, path.frames, 0.0);
+        const evaluation::RuleSwitches banded =
+            evaluation::countRuleSwitches(scene, exported, path.frames, settings.hysteresis);
+        auto per1000 = [](const evaluation::RuleSwitches& s) {
+            return s.objectFrames > 0 ? 1000.0 * double(s.switches) / double(s.objectFrames) : 0.0;
+        };
+        pathSwitches = {{"path", path.name},
+                        {"frames", path.frames.size()},
+                        {"switches_without_hysteresis", plain.switches},
+                        {"switches_with_hysteresis", banded.switches},
+                        {"per_1000_object_frames_without", per1000(plain)},
+                        {"per_1000_object_frames_with", per1000(banded)}};
+    }
     if (!tunedBias.meetsBudget) {
         std::cerr << "lodopt: warning: even the coarsest levels the views need are predicted over the budget on "
                      "average (" << tunedBias.meanPredictedMs << " ms > " << sweep.budgetMs << " ms)\n";
@@ -230,6 +251,7 @@ void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
         {"hysteresis", settings.hysteresis},
         {"prior_samples", settings.priorSamples},
         {"pricing", o.pricing},
+        {"path_switches", pathSwitches},
         {"held_out", comparisonJson(comparison)},
         {"held_out_reference",
          {{"gain_views", comparison.gainViews},
@@ -259,6 +281,12 @@ void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
             std::printf("%-18s %9.4g %12.6f %13.3f %12.3f %11.3f\n", rule.rule.c_str(), rule.bias.bias,
                         rule.meanFitness, rule.gainFraction, rule.overBudgetShare, rule.meanPredictedMs);
         }
+    }
+    if (!pathSwitches.is_null()) {
+        std::cout << "along path " << pathSwitches["path"].get<std::string>() << " (" << pathSwitches["frames"].get<std::size_t>()
+                  << " frames): " << pathSwitches["switches_without_hysteresis"].get<long long>()
+                  << " level switches without hysteresis, " << pathSwitches["switches_with_hysteresis"].get<long long>()
+                  << " with " << settings.hysteresis << "\n";
     }
     for (const auto& file : summary["files"]) std::cout << "wrote " << file.get<std::string>() << "\n";
 }
@@ -313,6 +341,9 @@ void addThresholdsCommand(CLI::App& app) {
                         "time at each fitting view) or level-error (levels off, weighted by screen size squared)")
         ->check(CLI::IsMember({"measured", "level-error"}))
         ->capture_default_str();
+    command->add_option("--switch-path", options->switchPath,
+                        "Count the exported rule's level switches along this camera path (name or JSON file; "
+                        "default: the scene's first path, if it has one)");
     command->add_option("--hysteresis", options->hysteresis,
                         "Switch band as a fraction of the switch distance, for engines that have one")
         ->check(CLI::Range(0.0, 0.9))

@@ -7,6 +7,7 @@
 
 #include "metrics/incremental_evaluator.hpp"
 #include "scenes/engine_lod.hpp"
+#include "scenes/viewpoints.hpp"
 #include "scheduler/screen_thresholds.hpp"
 
 namespace lodopt::evaluation {
@@ -94,6 +95,36 @@ scenes::Combination ruleCombination(const scenes::Scene& scene, const ObjectThre
         levels[i] = scheduler::levelForScreenSize(thresholds.at(i), view.screenSizes[i] * bias);
     }
     return levels;
+}
+
+RuleSwitches countRuleSwitches(const scenes::Scene& scene, const ObjectThresholdList& thresholds,
+                               std::span<const scenes::Camera> path, double hysteresis) {
+    if (!(hysteresis >= 0.0 && hysteresis < 1.0)) throw std::invalid_argument("countRuleSwitches: hysteresis in [0, 1)");
+    if (thresholds.size() != scene.objects.size()) throw std::invalid_argument("countRuleSwitches: one list per object");
+    RuleSwitches result;
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const std::vector<double>& t = thresholds[i];
+        if (t.empty()) continue;
+        const scenes::Bounds bounds = scenes::worldBounds(scene.objects[i], 0);
+        int current = -1;
+        for (const scenes::Camera& camera : path) {
+            const double size = scenes::screenSize(bounds, camera);
+            int level = int(t.size());
+            for (std::size_t k = 0; k < t.size(); ++k) {
+                const double threshold = int(k) == current - 1 ? t[k] / (1.0 - hysteresis) : t[k];
+                if (size >= threshold) {
+                    level = int(k);
+                    break;
+                }
+            }
+            if (current >= 0) {
+                result.switches += level != current ? 1 : 0;
+                ++result.objectFrames;
+            }
+            current = level;
+        }
+    }
+    return result;
 }
 
 LodBias fitLodBias(const scenes::Scene& scene, const ObjectThresholdList& thresholds, std::span<const ViewChoices> views,

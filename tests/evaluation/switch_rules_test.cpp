@@ -209,5 +209,33 @@ TEST(SwitchRules, LodBiasIsBakedIntoTheEngineValues) {
     EXPECT_THROW(applyLodBias(scene, results, 0.0, settings), std::invalid_argument);
 }
 
+TEST(SwitchRules, HysteresisHoldsTheCoarserLevelUntilTheBandIsCrossed) {
+    scenes::Scene scene;
+    scene.name = "box";
+    scene.objects = {test_scenes::boxObject("chain", {0, 0, 0}, {{1, 0.5f, 0.5f}, {0.5f, 0.25f, 0.25f}}, -1),
+                     test_scenes::boxObject("single", {0, 0, -50}, {{1, 1, 1}}, -1)};
+    scenes::updateStatistics(scene);
+    const double radius = double(scenes::worldBounds(scene.objects[0], 0).sphereRadius);
+    // Under a 90-degree field of view the screen size is r / d: cameras at d = r / s.
+    std::vector<scenes::Camera> path;
+    for (double size : {0.52, 0.49, 0.51, 0.48, 0.6, 0.3}) {
+        scenes::Camera camera;
+        camera.fovYDegrees = 90.0f;
+        camera.position = {0.0f, 0.0f, float(radius / size)};
+        camera.target = {0.0f, 0.0f, 0.0f};
+        ASSERT_NEAR(scenes::screenSize(scenes::worldBounds(scene.objects[0], 0), camera), size, 1e-5);
+        path.push_back(camera);
+    }
+    const ObjectThresholdList thresholds = {{0.5}, {}};
+    // Levels 0 1 0 1 0 1: five switches.
+    const RuleSwitches plain = countRuleSwitches(scene, thresholds, path, 0.0);
+    EXPECT_EQ(plain.switches, 5);
+    EXPECT_EQ(plain.objectFrames, 5);  // one object with levels, five frame pairs
+    // With 0.1, level 1 goes finer only from 0.5 / 0.9 = 0.556: levels 0 1 1 1 0 1, three.
+    EXPECT_EQ(countRuleSwitches(scene, thresholds, path, 0.1).switches, 3);
+    EXPECT_THROW(countRuleSwitches(scene, thresholds, path, 1.0), std::invalid_argument);
+    EXPECT_THROW(countRuleSwitches(scene, {{0.5}}, path, 0.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace lodopt::evaluation

@@ -80,6 +80,18 @@ LodBias fitLodBias(const scenes::Scene& scene, const ObjectThresholdList& thresh
 // no gain to share out and are left out of the gain fraction.
 constexpr double kMinOptimizerGain = 1e-6;
 
+// Level switches a rule makes along a camera path, as THREE.LOD.update makes them with a
+// hysteresis h on every level: an object at level c goes finer only once its screen size reaches
+// t_(c-1) / (1 - h) (three.js lowers the current level's switch distance by h), coarser as soon as
+// it falls below a threshold. Every object with levels counts, wherever it is (three.js switches
+// objects out of view too). h in [0, 1).
+struct RuleSwitches {
+    long long switches = 0;      // level changes between consecutive frames, summed over objects
+    long long objectFrames = 0;  // objects with levels x (frames - 1)
+};
+RuleSwitches countRuleSwitches(const scenes::Scene& scene, const ObjectThresholdList& thresholds,
+                               std::span<const scenes::Camera> path, double hysteresis);
+
 struct RuleOutcome {
     std::string rule;
     LodBias bias;                 // fitted on the fitting views
