@@ -13,6 +13,7 @@ views=${1:-96}
 out=${2:-out/thresholds-measure}
 lodopt=${LODOPT:-build/cli/lodopt}
 mkdir -p "$out"
+rm -f "$out/time.txt"
 table="$out/held_out.md"
 {
   echo "| scene | views (fit / held out) | rule | lod bias | mean fitness | gain fraction | over budget | mean ms |"
