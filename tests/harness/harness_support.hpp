@@ -4,6 +4,9 @@
 // stdout and stderr kept apart.
 #pragma once
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -66,5 +69,24 @@ inline NodeRun runNode(const std::filesystem::path& errFile, const std::string& 
     run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return run;
 }
+
+// A test that needs the harness tools (failing, never skipping, without them) and a fresh
+// temporary folder, kept when the test fails.
+class HarnessFolderTest : public testing::Test {
+protected:
+    void SetUp() override {
+        const std::string missing = missingTools();
+        ASSERT_TRUE(missing.empty()) << "the harness cannot run: " << missing;
+        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+        mDir = std::filesystem::temp_directory_path() /
+               ("lodopt-harness-" + std::to_string(::getpid()) + "-" + info->name());
+        std::filesystem::remove_all(mDir);
+        std::filesystem::create_directories(mDir);
+    }
+    void TearDown() override {
+        if (!mDir.empty() && !HasFailure()) std::filesystem::remove_all(mDir);
+    }
+    std::filesystem::path mDir;
+};
 
 }  // namespace lodopt::harness_test

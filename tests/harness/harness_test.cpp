@@ -42,21 +42,13 @@ nlohmann::json firstView(const fs::path& model) {
     return nlohmann::json::parse(info.output)["views"].at(0);
 }
 
-class Harness : public testing::Test {
+class Harness : public HarnessFolderTest {
 protected:
     void SetUp() override {
-        const std::string missing = missingTools();
-        ASSERT_TRUE(missing.empty()) << "the harness cannot run: " << missing;
+        HarnessFolderTest::SetUp();
+        if (HasFatalFailure()) return;
         if (!fs::exists(kShared / "gltf")) GTEST_SKIP() << "shared glTF data not found at " << kShared;
-        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-        mDir = fs::temp_directory_path() / ("lodopt-harness-" + std::to_string(::getpid()) + "-" + info->name());
-        fs::remove_all(mDir);
-        fs::create_directories(mDir);
     }
-    void TearDown() override {
-        if (!mDir.empty() && !HasFailure()) fs::remove_all(mDir);
-    }
-    fs::path mDir;
 };
 
 // The three.js side alone, in one Chromium run: BoxTextured from lodopt's first default view,

@@ -137,23 +137,11 @@ nlohmann::json camerasJson(const std::vector<scenes::Camera>& cameras) {
 
 double relativeDifference(double a, double b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-30}); }
 
-class HarnessLod : public testing::Test {
+class HarnessLod : public HarnessFolderTest {
 protected:
-    void SetUp() override {
-        const std::string missing = missingTools();
-        ASSERT_TRUE(missing.empty()) << "the harness cannot run: " << missing;
-        const auto* info = testing::UnitTest::GetInstance()->current_test_info();
-        mDir = fs::temp_directory_path() / ("lodopt-harness-" + std::to_string(::getpid()) + "-" + info->name());
-        fs::remove_all(mDir);
-        fs::create_directories(mDir);
-    }
-    void TearDown() override {
-        if (!mDir.empty() && !HasFailure()) fs::remove_all(mDir);
-    }
     // sweep -> thresholds -> <scene>.lod.glb; the validator's errors; THREE.LOD's level against
     // lodopt's rule for every (object with levels, camera) pair.
     void checkScene(const SceneCase& param);
-    fs::path mDir;
 };
 
 void HarnessLod::checkScene(const SceneCase& param) {
