@@ -32,6 +32,11 @@ pkg_check_modules(OSMESA QUIET IMPORTED_TARGET osmesa)
 if(NOT OSMESA_FOUND)
   lodopt_missing(libosmesa6-dev "OSMesa (software OpenGL)")
 endif()
+# EGL (libglvnd's libEGL): the renderer's second backend, headless on a GPU's driver or Mesa's.
+pkg_check_modules(EGL QUIET IMPORTED_TARGET egl)
+if(NOT EGL_FOUND)
+  lodopt_missing(libegl-dev "EGL (headless OpenGL on a GPU)")
+endif()
 
 find_package(glm QUIET CONFIG)
 if(NOT glm_FOUND)

@@ -13,7 +13,7 @@ case "$mode" in run|test) ;; *) echo "usage: scripts/quickstart.sh run|test" >&2
 
 packages=(
   cmake ninja-build g++ pkg-config
-  libosmesa6-dev libopencv-dev libpng-dev libjpeg-dev libopenexr-dev
+  libosmesa6-dev libegl-dev libegl-mesa0 libopencv-dev libpng-dev libjpeg-dev libopenexr-dev
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev libcli11-dev libdraco-dev libwebp-dev
   libpagmo-dev openmpi-bin libopenmpi-dev
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox

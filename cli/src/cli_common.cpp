@@ -97,6 +97,15 @@ void addShadingOption(CLI::App& command, std::string& shading) {
         ->capture_default_str();
 }
 
+void addBackendOption(CLI::App& command, std::string& backend) {
+    command
+        .add_option("--backend", backend,
+                    "osmesa (software, deterministic: the default) or egl (headless on the machine's GPU driver, "
+                    "else Mesa's)")
+        ->check(CLI::IsMember({"osmesa", "egl"}))
+        ->capture_default_str();
+}
+
 void parseSize(const std::string& text, int& width, int& height) {
     int w = 0, h = 0;
     char x = 0, extra = 0;

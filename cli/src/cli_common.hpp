@@ -66,6 +66,8 @@ void addResumeFlag(CLI::App& command, bool& resume, const std::string& what);
 void parseWeights(const std::string& text, metrics::MetricParameters& parameters);
 // Parses "512x512".
 void parseSize(const std::string& text, int& width, int& height);
+// --backend osmesa|egl (renderer::Backend; docs/renderer.md "Backends").
+void addBackendOption(CLI::App& command, std::string& backend);
 // --shading lambert|pbr (docs/renderer.md "Shading"); CLI11 refuses any other value.
 void addShadingOption(CLI::App& command, std::string& shading);
 // --scene-seed: which variant of a built-in scene a command uses, apart from any search seed, so

@@ -480,6 +480,7 @@ void addBenchCommand(CLI::App& app) {
         ->check(CLI::PositiveNumber);
     addSizeOption(*command, o.size, "Render size WIDTHxHEIGHT");
     addShadingOption(*command, o.shading);
+    addBackendOption(*command, o.backend);
     command->add_option("--threads", o.threads, "Evaluation threads (default: all cores)")->check(CLI::Range(1, 256));
     addWeightsOption(*command, o.weights);
     addProfileOptions(*command, o.profile, o.model);

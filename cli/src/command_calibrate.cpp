@@ -34,6 +34,7 @@ struct CalibrateOptions {
     std::uint32_t sceneSeed = 1;
     std::string size = "512x512";
     std::string shading = renderer::shadingName(renderer::kDefaultShading);
+    std::string backend = "osmesa";
     int jitter = 3;
     int rounds = 6;
     int maxRounds = 25;
@@ -196,6 +197,7 @@ void runCalibrate(const CalibrateOptions& options) {
     renderer::RenderSettings renderSettings;
     parseSize(options.size, renderSettings.width, renderSettings.height);
     renderSettings.shading = renderer::parseShading(options.shading);
+    renderSettings.backend = renderer::parseBackend(options.backend);
     const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
 
     timemodel::CalibrationOptions planOptions;
@@ -250,6 +252,7 @@ void addCalibrateCommand(CLI::App& app) {
     addSceneSeedOption(*command, options->sceneSeed);
     addSizeOption(*command, options->size, "WIDTHxHEIGHT of the timed frames");
     addShadingOption(*command, options->shading);
+    addBackendOption(*command, options->backend);
     command->add_option("--jitter", options->jitter, "Extra viewpoints around each named view")
         ->capture_default_str()
         ->check(CLI::Range(0, 100));

@@ -20,16 +20,18 @@ void addRenderCommand(CLI::App& app) {
         std::uint32_t seed = 1;
         bool time = false;
         int repeats = 7;
+        std::string backend = "osmesa";
         OutputOptions output;
     };
     auto options = std::make_shared<Options>();
-    CLI::App* command = app.add_subcommand("render", "Render one LOD combination headless (OSMesa)");
+    CLI::App* command = app.add_subcommand("render", "Render one LOD combination headless (OSMesa or EGL)");
     addSceneOption(*command, options->scene);
     addViewOption(*command, options->view, "View name or index");
     command->add_option("--levels", options->levels,
                         "One level per object, comma-separated (-1 = not drawn); default all 0 (the reference)");
     addSizeOption(*command, options->size, "WIDTHxHEIGHT");
     addShadingOption(*command, options->shading);
+    addBackendOption(*command, options->backend);
     command->add_option("--out", options->out, "Color image: .png, .jpg or .ppm")->capture_default_str();
     command->add_option("--depth-out", options->depthOut, "Also write depth as floats: .exr or .pfm");
     addSceneSeedOption(*command, options->seed);
@@ -47,6 +49,7 @@ void addRenderCommand(CLI::App& app) {
         renderer::RenderSettings settings;
         parseSize(options->size, settings.width, settings.height);
         settings.shading = renderer::parseShading(options->shading);
+        settings.backend = renderer::parseBackend(options->backend);
         scenes::Scene scene = scenes::loadScene(options->scene, options->seed);
         const int view = scenes::findView(scene, options->view);
         scenes::Combination combination = scenes::referenceCombination(scene);
@@ -68,7 +71,9 @@ void addRenderCommand(CLI::App& app) {
                                      {"shading", options->shading},
                                      {"out", options->out},
                                      {"renderer", renderer.glRendererString()},
-                                     {"gl_version", renderer.glVersionString()}};
+                                     {"gl_version", renderer.glVersionString()},
+                                     {"backend", options->backend},
+                                     {"platform", renderer.platformDescription()}};
             if (!options->depthOut.empty()) result["depth_out"] = options->depthOut;
             if (options->time) result["render_ms"] = renderMs;
             printJson(result);

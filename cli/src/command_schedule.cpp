@@ -70,6 +70,7 @@ struct ScheduleOptions {
     int batch = 25;
     bool resume = false;
     std::string outDir = "out/schedule";
+    std::string backend = "osmesa";
 };
 
 // Everything that changes a frame's row, keyed by option name (--batch does not). The
@@ -353,6 +354,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     renderer::RenderSettings settings;
     parseSize(options.size, settings.width, settings.height);
     settings.shading = renderer::parseShading(options.shading);
+    settings.backend = renderer::parseBackend(options.backend);
     const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
     if (scene.objects.empty()) throw UsageError("scene '" + scene.name + "' has no objects");
     const scenes::CameraPath path =
@@ -425,6 +427,7 @@ void addScheduleCommand(CLI::App& app) {
                       "Also predict each decision from exact features (exact_predicted_ms; slow)");
     addSizeOption(*command, options->size, "Render size WIDTHxHEIGHT (as calibrated)");
     addShadingOption(*command, options->shading);
+    addBackendOption(*command, options->backend);
     addProfileOptions(*command, options->profile, options->model);
     command->add_option("--organisation", options->organisation, "flat (DONG15) or tiles (CITY17 quadtree)")
         ->check(CLI::IsMember({"flat", "tiles"}))

@@ -31,6 +31,7 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
     PreparedScene prepared;
     parseSize(options.size, prepared.settings.width, prepared.settings.height);
     prepared.settings.shading = renderer::parseShading(options.shading);
+    prepared.settings.backend = renderer::parseBackend(options.backend);
     parseWeights(options.weights, prepared.metrics);
     prepared.scene = scenes::loadScene(options.scene, options.sceneSeed);
     if (options.view == "all") {

@@ -32,6 +32,7 @@ struct OptimizeOptions {
     std::uint32_t sceneSeed = 1;  // a built-in scene's variant (--scene-seed)
     std::string size = "512x512";
     std::string shading = renderer::shadingName(renderer::kDefaultShading);  // renderer::Shading by name
+    std::string backend = "osmesa";  // renderer::Backend by name (bench times on it)
     std::string evalPath = "fast";
     int threads = std::max(1, int(std::thread::hardware_concurrency()));
     // Fast-path evaluation states (LayerEvaluator); tune keeps one evaluator per view and

@@ -5,6 +5,22 @@
 #include "renderer/renderer.hpp"
 
 namespace lodopt::renderer::gl {
+
+const Api*& currentApi() {
+    thread_local const Api* api = nullptr;
+    return api;
+}
+
+Api loadApi(const std::function<void*(const char*)>& getProcAddress) {
+    Api api;
+#define LODOPT_GL_LOAD(name)                                                                           \
+    api.name##_ = reinterpret_cast<decltype(api.name##_)>(getProcAddress(#name));                     \
+    if (!api.name##_) throw RenderError("the OpenGL context gives no " #name " (OpenGL 4.3 core needed)");
+    LODOPT_GL_FUNCTIONS(LODOPT_GL_LOAD)
+#undef LODOPT_GL_LOAD
+    return api;
+}
+
 namespace {
 
 GLuint compileShader(GLenum type, const char* source) {

@@ -4,6 +4,8 @@
 #include <GL/gl.h>
 #include <GL/glext.h>
 
+#include "gl_api.hpp"
+
 #include "scenes/scene.hpp"
 
 namespace lodopt::renderer::gl {

@@ -34,6 +34,9 @@ public:
         }
     }
     std::string description() const override { return "OSMesa (Mesa software rasterizer)"; }
+    void* getProcAddress(const char* name) const override {
+        return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+    }
 
 private:
     OSMesaContext mContext = nullptr;

@@ -105,6 +105,13 @@ struct Renderer::Impl {
     const scenes::Scene& scene;
     RenderSettings settings;
     std::unique_ptr<Platform> platform;
+    gl::Api api;  // this context's GL functions (gl_api.hpp)
+
+    // Makes the context and its GL functions this thread's current ones.
+    void activate() {
+        platform->makeCurrent();
+        gl::currentApi() = &api;
+    }
     GLuint program = 0, framebuffer = 0, colorBuffer = 0, depthBuffer = 0;
     GLint uModelViewProjection = -1, uNormalMatrix = -1, uBaseColor = -1, uHasTexture = -1, uToLight = -1,
           uAmbient = -1, uTexture = -1, uTransformUv = -1, uUvTransform = -1, uModel = -1, uFlatNormals = -1;
@@ -256,7 +263,7 @@ struct Renderer::Impl {
 
     // The state every pass starts from; returns the camera's view-projection matrix.
     glm::mat4 beginPass(const scenes::Camera& camera, const PixelRect* scissor) {
-        platform->makeCurrent();
+        activate();
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
         glViewport(0, 0, settings.width, settings.height);
         if (scissor) {
@@ -369,7 +376,7 @@ struct Renderer::Impl {
 };
 
 Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings)
-    : Renderer(scene, settings, createOsMesaPlatform()) {}
+    : Renderer(scene, settings, createPlatform(settings.backend)) {}
 
 Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings, std::unique_ptr<Platform> platform)
     : mImpl(std::make_unique<Impl>(scene, settings)) {
@@ -381,6 +388,8 @@ Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings, std::uni
     scenes::validateScene(scene);
     mImpl->platform = std::move(platform);
     mImpl->platform->makeCurrent();
+    mImpl->api = gl::loadApi([this](const char* name) { return mImpl->platform->getProcAddress(name); });
+    mImpl->activate();
     auto glString = [](GLenum name) {
         const GLubyte* text = glGetString(name);
         return text ? std::string(reinterpret_cast<const char*>(text)) : std::string("unknown");
@@ -396,7 +405,7 @@ Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings, std::uni
 
 Renderer::~Renderer() {
     if (!mImpl || !mImpl->platform) return;
-    mImpl->platform->makeCurrent();
+    mImpl->activate();
     for (auto& object : mImpl->meshes) {
         for (auto& level : object) {
             for (gl::GpuMesh& mesh : level) {

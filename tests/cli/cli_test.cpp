@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "run_lodopt.hpp"
@@ -100,6 +101,22 @@ TEST(CliRender, WritesPngAndReportsTime) {
     EXPECT_EQ(json["levels"], nlohmann::json({5, 4, 4}));
     EXPECT_TRUE(std::filesystem::exists(out));
     EXPECT_TRUE(std::filesystem::exists(dir / "depth.exr"));
+    EXPECT_EQ(json["backend"], "osmesa");
+    // The EGL backend (headless, here Mesa's llvmpipe again): the same image file.
+    const std::string eglOut = (dir / "coarse_egl.png").string();
+    result = runLodopt("render --scene harbor --view ship_close --levels 5,4,4 --size 128x96 --backend egl --time "
+                       "--repeats 2 --out " + eglOut + " --json");
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    json = nlohmann::json::parse(result.output);
+    EXPECT_EQ(json["backend"], "egl");
+    EXPECT_EQ(json["platform"].get<std::string>().rfind("EGL ", 0), 0u) << json["platform"];
+    EXPECT_GT(json["render_ms"].get<double>(), 0.0);
+    if (json["renderer"].get<std::string>().find("llvmpipe") != std::string::npos) {
+        std::ifstream a(out, std::ios::binary), b(eglOut, std::ios::binary);
+        const std::string bytesA((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+        const std::string bytesB((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+        EXPECT_EQ(bytesA, bytesB);
+    }
     std::filesystem::remove_all(dir);
 }
 
@@ -108,6 +125,7 @@ TEST(CliRender, BadArgumentsExitWithTwoAndWriteNothing) {
     const std::string out = (dir / "x.png").string();
     EXPECT_EQ(runLodopt("render --levels 0,9,0 --out " + out).exitCode, 2);
     EXPECT_EQ(runLodopt("render --levels 0,0 --out " + out).exitCode, 2);
+    EXPECT_EQ(runLodopt("render --backend vulkan --out " + out).exitCode, 2);
     EXPECT_EQ(runLodopt("render --levels a,b,c --out " + out).exitCode, 2);
     EXPECT_EQ(runLodopt("render --view nowhere --out " + out).exitCode, 2);
     EXPECT_EQ(runLodopt("render --size 0x10 --out " + out).exitCode, 2);

@@ -20,6 +20,7 @@ public:
         mInner->makeCurrent();
     }
     std::string description() const override { return "counting " + mInner->description(); }
+    void* getProcAddress(const char* name) const override { return mInner->getProcAddress(name); }
 
 private:
     std::unique_ptr<renderer::Platform> mInner;

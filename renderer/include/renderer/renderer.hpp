@@ -48,6 +48,10 @@ inline constexpr Shading kDefaultShading = Shading::Pbr;
 const char* shadingName(Shading shading);
 Shading parseShading(const std::string& name);
 
+// Which platform a Renderer built from settings alone draws on: OSMesa (the default: the images
+// the metrics score are llvmpipe's, deterministic) or EGL (the user's GPU; docs/renderer.md).
+enum class Backend { OsMesa, Egl };
+
 struct RenderSettings {
     int width = 512;   // pixels, 1..16384
     int height = 512;  // pixels, 1..16384
@@ -62,6 +66,7 @@ struct RenderSettings {
     glm::vec3 groundIrradiance{0.3f};
     // Sky; exact multiples of 1/255 so the cleared bytes are (158, 194, 230, 255) everywhere.
     glm::vec4 clearColor{158.0f / 255.0f, 194.0f / 255.0f, 230.0f / 255.0f, 1.0f};
+    Backend backend = Backend::OsMesa;  // the platform Renderer(scene, settings) creates
 };
 
 // A rendered image: RGBA8 rows top to bottom, and window-space depth in [0, 1] per pixel
@@ -136,14 +141,25 @@ public:
     virtual ~Platform() = default;
     virtual void makeCurrent() = 0;
     virtual std::string description() const = 0;  // e.g. "OSMesa 22.3.6 llvmpipe"
+    // The OpenGL function `name` of this platform's context (null when it has none): the
+    // renderer calls GL through a table loaded from here, not through linked symbols.
+    virtual void* getProcAddress(const char* name) const = 0;
 };
 // OSMesa with an OpenGL 3.3+ core-profile context. Throws RenderError when it cannot.
 std::unique_ptr<Platform> createOsMesaPlatform();
+// EGL without a window: a GPU's driver through EGL_EXT_platform_device (NVIDIA, AMD, Intel;
+// Mesa's software device too), else Mesa's surfaceless platform; an OpenGL 4.3+ core-profile
+// context. Throws RenderError saying what is missing (libEGL, a device, OpenGL 4.3 core).
+std::unique_ptr<Platform> createEglPlatform();
+
+const char* backendName(Backend backend);                // "osmesa", "egl"
+Backend parseBackend(const std::string& name);           // throws RenderError for another name
+std::unique_ptr<Platform> createPlatform(Backend backend);
 
 class Renderer {
 public:
     // Uploads every level of every object. `scene` must outlive the renderer. The first form
-    // renders on createOsMesaPlatform(); the second on `platform` (not null: RenderError).
+    // renders on createPlatform(settings.backend); the second on `platform` (not null: RenderError).
     Renderer(const scenes::Scene& scene, RenderSettings settings = {});
     Renderer(const scenes::Scene& scene, RenderSettings settings, std::unique_ptr<Platform> platform);
     ~Renderer();
