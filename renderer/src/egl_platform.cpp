@@ -63,12 +63,14 @@ public:
         }
         throw RenderError("EGL: cannot create an OpenGL 4.3 core-profile context: " + why);
     }
+    // The display is not terminated: eglGetPlatformDisplay gives every caller the same one, so
+    // terminating it would end the other renderers' contexts; it lives until the process exits
+    // (and so does the driver it loaded, whose exit-time allocations lsan.supp then names).
     ~EglPlatform() override {
         if (mDisplay == EGL_NO_DISPLAY) return;
-        eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (eglGetCurrentContext() == mContext) eglMakeCurrent(mDisplay, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         if (mContext != EGL_NO_CONTEXT) eglDestroyContext(mDisplay, mContext);
         if (mSurface != EGL_NO_SURFACE) eglDestroySurface(mDisplay, mSurface);
-        eglTerminate(mDisplay);
     }
     void makeCurrent() override {
         if (eglGetCurrentContext() == mContext) return;
@@ -82,7 +84,7 @@ public:
     }
 
 private:
-    // Sets up `display` (terminated again when it fails); `why` gets the reason.
+    // Sets up `display` (left initialized when it fails: see the destructor); `why` gets the reason.
     bool tryDisplay(EGLDisplay display, std::string& why) {
         EGLint major = 0, minor = 0;
         if (!eglInitialize(display, &major, &minor)) {
@@ -101,13 +103,11 @@ private:
         if (!eglBindAPI(EGL_OPENGL_API) || !eglChooseConfig(display, configAttributes, &config, 1, &configs) ||
             configs < 1) {
             why = eglErrorText("no OpenGL config");
-            eglTerminate(display);
             return false;
         }
         const EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
         if (context == EGL_NO_CONTEXT) {
             why = eglErrorText("no OpenGL 4.3 core-profile context");
-            eglTerminate(display);
             return false;
         }
         EGLSurface surface = EGL_NO_SURFACE;
@@ -117,7 +117,6 @@ private:
             if (surface == EGL_NO_SURFACE) {
                 why = eglErrorText("no pbuffer surface");
                 eglDestroyContext(display, context);
-                eglTerminate(display);
                 return false;
             }
         }
@@ -125,7 +124,6 @@ private:
             why = eglErrorText("cannot make the context current");
             if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
             eglDestroyContext(display, context);
-            eglTerminate(display);
             return false;
         }
         mDisplay = display;
