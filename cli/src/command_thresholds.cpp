@@ -48,8 +48,10 @@ double sweepFov(const SweepTable& table, double given) {
     return fov > 0.0 ? fov : 45.0;
 }
 
+// A figure, or null where it is undefined (no samples, no held-out views).
+nlohmann::json numberOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
 nlohmann::json objectJson(const scenes::Object& object, const evaluation::ObjectThresholds& r) {
-    auto numberOrNull = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
     return {{"name", object.name},
             {"levels", r.levelCount},
             {"fitted", r.fitted},
@@ -114,7 +116,6 @@ nlohmann::json biasJson(const evaluation::LodBias& bias) {
 }
 
 nlohmann::json comparisonJson(const evaluation::RuleComparison& comparison) {
-    auto numberOrNull = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
     nlohmann::json rules = nlohmann::json::array();
     for (const evaluation::RuleOutcome& rule : comparison.rules) {
         nlohmann::json row = {{"rule", rule.rule},
@@ -232,7 +233,6 @@ void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
     scenes::GltfExportOptions exportOptions;
     exportOptions.coverage = scenes::CoverageConvention::UnityRelativeHeight;
     scenes::exportGltf(scene, glb.string(), exportOptions);
-    auto numberOrNull = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
     nlohmann::json summary = {
         {"from", o.from},
         {"scene", sweep.scene},

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "evaluation/engine_thresholds.hpp"
 #include "report_data.hpp"
 #include "report_sections.hpp"
 #include "sweep_files.hpp"
@@ -51,7 +52,7 @@ void plotObject(ReportContext& context, const SweepTable& table, const nlohmann:
     std::size_t feasible = 0;
     for (const SweepTableView& view : table.views) {
         if (!view.feasible) continue;
-        const bool held = holdoutEvery > 0 && int(feasible % std::size_t(holdoutEvery)) == holdoutEvery - 1;
+        const bool held = evaluation::isHeldOutView(feasible, holdoutEvery);  // the split thresholds used
         ++feasible;
         if (std::find(view.searched.begin(), view.searched.end(), int(index)) == view.searched.end()) continue;
         const double size = view.screenSizes[index];

@@ -63,25 +63,23 @@ TEST(ScreenThresholds, EqualSizesShareALevel) {
     EXPECT_DOUBLE_EQ(fit.cost, 1.0);
 }
 
-// Every non-decreasing assignment of levels to the distinct sizes, the least cost: the DP's
-// answer must equal it on random instances.
-double bruteForceCost(std::vector<ThresholdSample> samples, int levels) {
-    std::sort(samples.begin(), samples.end(),
-              [](const ThresholdSample& a, const ThresholdSample& b) { return a.screenSize > b.screenSize; });
+// Every non-decreasing assignment of levels to the distinct sizes, the least summed cost: the
+// DP's answer must equal it on random instances.
+double bruteForceCost(const std::vector<PricedSample>& samples, int levels) {
     std::vector<double> sizes;
-    for (const ThresholdSample& s : samples) {
-        if (sizes.empty() || sizes.back() != s.screenSize) sizes.push_back(s.screenSize);
-    }
+    for (const PricedSample& s : samples) sizes.push_back(s.screenSize);
+    std::sort(sizes.rbegin(), sizes.rend());
+    sizes.erase(std::unique(sizes.begin(), sizes.end()), sizes.end());
     double best = std::numeric_limits<double>::infinity();
     std::vector<int> assignment(sizes.size(), 0);
     std::function<void(std::size_t, int)> visit = [&](std::size_t g, int low) {
         if (g == sizes.size()) {
-            double cost = 0.0;
-            for (const ThresholdSample& s : samples) {
-                const std::size_t at = std::find(sizes.begin(), sizes.end(), s.screenSize) - sizes.begin();
-                cost += s.weight * std::abs(assignment[at] - s.level);
+            double total = 0.0;
+            for (const PricedSample& s : samples) {
+                const auto at = std::find(sizes.begin(), sizes.end(), s.screenSize) - sizes.begin();
+                total += s.levelCost[std::size_t(assignment[std::size_t(at)])];
             }
-            best = std::min(best, cost);
+            best = std::min(best, total);
             return;
         }
         for (int k = low; k < levels; ++k) {
@@ -91,6 +89,17 @@ double bruteForceCost(std::vector<ThresholdSample> samples, int levels) {
     };
     visit(0, 0);
     return best;
+}
+
+// The level error w |k - level| as per-level costs.
+std::vector<PricedSample> levelErrors(const std::vector<ThresholdSample>& samples, int levels) {
+    std::vector<PricedSample> priced;
+    for (const ThresholdSample& s : samples) {
+        PricedSample p{s.screenSize, {}};
+        for (int k = 0; k < levels; ++k) p.levelCost.push_back(s.weight * std::abs(k - s.level));
+        priced.push_back(p);
+    }
+    return priced;
 }
 
 TEST(ScreenThresholds, MatchesExhaustiveSearchOnRandomInstances) {
@@ -103,7 +112,7 @@ TEST(ScreenThresholds, MatchesExhaustiveSearchOnRandomInstances) {
             samples.push_back({0.01 * double(1 + random() % 5), int(random() % levels), double(random() % 4)});
         }
         const ThresholdFit fit = fitScreenThresholds(samples, levels);
-        EXPECT_NEAR(fit.cost, bruteForceCost(samples, levels), 1e-9) << "instance " << instance;
+        EXPECT_NEAR(fit.cost, bruteForceCost(levelErrors(samples, levels), levels), 1e-9) << "instance " << instance;
         // The thresholds reproduce the cost and never increase.
         double ruleCost = 0.0;
         for (const ThresholdSample& s : samples) {
@@ -128,30 +137,8 @@ TEST(ScreenThresholds, PricedFitMatchesExhaustiveSearchOnRandomInstances) {
             for (int k = 0; k < levels; ++k) sample.levelCost.push_back(cost(random));
             samples.push_back(sample);
         }
-        std::vector<double> sizes;
-        for (const PricedSample& s : samples) sizes.push_back(s.screenSize);
-        std::sort(sizes.rbegin(), sizes.rend());
-        sizes.erase(std::unique(sizes.begin(), sizes.end()), sizes.end());
-        double best = std::numeric_limits<double>::infinity();
-        std::vector<int> assignment(sizes.size(), 0);
-        std::function<void(std::size_t, int)> visit = [&](std::size_t g, int low) {
-            if (g == sizes.size()) {
-                double total = 0.0;
-                for (const PricedSample& s : samples) {
-                    const auto at = std::find(sizes.begin(), sizes.end(), s.screenSize) - sizes.begin();
-                    total += s.levelCost[std::size_t(assignment[std::size_t(at)])];
-                }
-                best = std::min(best, total);
-                return;
-            }
-            for (int k = low; k < levels; ++k) {
-                assignment[g] = k;
-                visit(g + 1, k);
-            }
-        };
-        visit(0, 0);
         const ThresholdFit fit = fitScreenThresholdsToCosts(samples, levels);
-        EXPECT_NEAR(fit.cost, best, 1e-9) << "instance " << instance;
+        EXPECT_NEAR(fit.cost, bruteForceCost(samples, levels), 1e-9) << "instance " << instance;
         double ruleCost = 0.0;
         for (const PricedSample& s : samples) {
             ruleCost += s.levelCost[std::size_t(levelForScreenSize(fit.thresholds, s.screenSize))];
