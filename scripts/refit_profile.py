@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Refit a device profile's linear model on feature subsets, offline.
 
-Usage: scripts/refit_profile.py [--clock CLOCK] PROFILE.json [PROFILE.json ...]
+Usage: scripts/refit_profile.py [--statistic STATISTIC] PROFILE.json [PROFILE.json ...]
 
-Reads the samples a `lodopt calibrate` profile stores (features, times on the clock named, by
-default wall-min; held-out flags, viewpoints) and, for the default feature set and each variant with one feature left
+Reads the samples a `lodopt calibrate` profile stores (features, times by the statistic named:
+median (the default: what every profile predicts), least-median, least or cpu; a profile written
+before the median was the predicted quantity names them wall-median, wall-min-median, wall-min;
+held-out flags, viewpoints) and, for the default feature set and each variant with one feature left
 out, fits the `linear` model the way timemodel does (non-negative least squares on relative
 residuals, intercept included) and prints the held-out mean / p90 of |t_act - t_est| / t_act,
 and the same for leave-one-viewpoint-out cross-validation over the fitted viewpoints. An
@@ -45,7 +47,7 @@ def evaluate(profile, columns):
     names = profile['feature_names']
     samples = profile['samples']
     x = np.array([s['features'] for s in samples])
-    t = np.array([s[CLOCK_FIELD] for s in samples])
+    t = np.array([s[CLOCK_FIELD] if CLOCK_FIELD in s else s[OLDER_NAMES[CLOCK_FIELD]] for s in samples])
     held = np.array([s['held_out'] for s in samples])
     view = np.array([s['viewpoint'] for s in samples])
     columns = [c for c in columns if c in names]  # profiles older than a feature lack it
@@ -59,13 +61,14 @@ def evaluate(profile, columns):
     return error[held].mean(), np.percentile(error[held], 90), cv.mean(), np.percentile(cv, 90)
 
 
-CLOCK_FIELD = 'wall_min_ms'
+CLOCK_FIELD = 'median_ms'
+OLDER_NAMES = {'median_ms': 'wall_median_ms', 'least_median_ms': 'wall_min_median_ms', 'least_ms': 'wall_min_ms'}
 
 
 def main():
     global CLOCK_FIELD
     paths = sys.argv[1:]
-    if len(paths) >= 2 and paths[0] == '--clock':
+    if len(paths) >= 2 and paths[0] == '--statistic':
         CLOCK_FIELD = paths[1].replace('-', '_') + '_ms'
         paths = paths[2:]
     if not paths:

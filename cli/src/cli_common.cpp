@@ -97,12 +97,23 @@ void addShadingOption(CLI::App& command, std::string& shading) {
         ->capture_default_str();
 }
 
-void addBackendOption(CLI::App& command, std::string& backend) {
+void BackendOptions::applyTo(renderer::RenderSettings& settings) const {
+    settings.backend = renderer::parseBackend(backend);
+    settings.frameClock = renderer::parseFrameClock(frameClock);
+}
+
+void addBackendOptions(CLI::App& command, BackendOptions& options) {
     command
-        .add_option("--backend", backend,
+        .add_option("--backend", options.backend,
                     "osmesa (software, deterministic: the default) or egl (headless on the machine's GPU driver, "
                     "else Mesa's)")
         ->check(CLI::IsMember({"osmesa", "egl"}))
+        ->capture_default_str();
+    command
+        .add_option("--frame-clock", options.frameClock,
+                    "What a timed frame's time is: wall (draw + glFinish), gpu (GL_TIME_ELAPSED) or auto (gpu on a "
+                    "GPU driver with timer queries, wall on software rasterizers)")
+        ->check(CLI::IsMember({"auto", "wall", "gpu"}))
         ->capture_default_str();
 }
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "metrics/metrics.hpp"
+#include "renderer/renderer.hpp"
 
 namespace lodopt::cli {
 
@@ -66,8 +67,15 @@ void addResumeFlag(CLI::App& command, bool& resume, const std::string& what);
 void parseWeights(const std::string& text, metrics::MetricParameters& parameters);
 // Parses "512x512".
 void parseSize(const std::string& text, int& width, int& height);
-// --backend osmesa|egl (renderer::Backend; docs/renderer.md "Backends").
-void addBackendOption(CLI::App& command, std::string& backend);
+// --backend osmesa|egl (renderer::Backend) and --frame-clock auto|wall|gpu (renderer::FrameClock;
+// docs/renderer.md "Backends" and "Timing"): the platform a command draws on, and what a frame's
+// time is read from where it times frames.
+struct BackendOptions {
+    std::string backend = "osmesa";
+    std::string frameClock = "auto";
+    void applyTo(renderer::RenderSettings& settings) const;
+};
+void addBackendOptions(CLI::App& command, BackendOptions& options);
 // --shading lambert|pbr (docs/renderer.md "Shading"); CLI11 refuses any other value.
 void addShadingOption(CLI::App& command, std::string& shading);
 // --scene-seed: which variant of a built-in scene a command uses, apart from any search seed, so

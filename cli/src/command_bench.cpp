@@ -215,7 +215,8 @@ std::vector<evaluation::AlgorithmRun> runUnits(const BenchOptions& bench, const 
         const timemodel::DeviceProfile profile = benchProfile(prepared, options.profile);
         section.warnings = timemodel::profileWarnings(
             profile, prepared.renderer->glRendererString(), prepared.settings.width, prepared.settings.height,
-            timemodel::describeMachine(), renderer::shadingName(prepared.settings.shading));
+            timemodel::describeMachine(), renderer::shadingName(prepared.settings.shading),
+            renderer::frameClockName(prepared.renderer->frameClock()));
         section.rows = evaluation::measureTimeModels(context, *prepared.renderer, profile, bench.timingFrames,
                                                      bench.timingRepeats, options.seed);
         checkpoint.timeModels = std::move(section);
@@ -480,7 +481,7 @@ void addBenchCommand(CLI::App& app) {
         ->check(CLI::PositiveNumber);
     addSizeOption(*command, o.size, "Render size WIDTHxHEIGHT");
     addShadingOption(*command, o.shading);
-    addBackendOption(*command, o.backend);
+    addBackendOptions(*command, o.backend);
     command->add_option("--threads", o.threads, "Evaluation threads (default: all cores)")->check(CLI::Range(1, 256));
     addWeightsOption(*command, o.weights);
     addProfileOptions(*command, o.profile, o.model);

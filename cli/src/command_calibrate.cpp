@@ -34,14 +34,15 @@ struct CalibrateOptions {
     std::uint32_t sceneSeed = 1;
     std::string size = "512x512";
     std::string shading = renderer::shadingName(renderer::kDefaultShading);
-    std::string backend = "osmesa";
+    BackendOptions backend;
     int jitter = 3;
     int rounds = 6;
     int maxRounds = 25;
     double timeBudget = 110.0;
     int repeats = 3;
     int warmup = 1;
-    std::string clock = timemodel::kAutoClock;
+    std::string learnFrom = timemodel::kAutoStatistic;
+    std::string refit;  // a profile to refit from its own samples, nothing timed
     std::string out = "device.json";
     OutputOptions output;
 };
@@ -81,12 +82,15 @@ nlohmann::json modelsJson(const std::vector<timemodel::ModelResult>& models) {
 
 nlohmann::json calibrationJson(const CalibrateOptions& options, const evaluation::CalibrationResult& run) {
     const timemodel::DeviceProfile& profile = run.profile;
-    nlohmann::json clockChoiceJson = {{"judged_on", "fitting samples"}, {"measured", run.choice.measured}};
-    for (const timemodel::ClockCandidate& candidate : run.choice.candidates) {
-        clockChoiceJson["split_half"][candidate.clock] = errorsJson(candidate.repeatability);
+    nlohmann::json choiceJson = {{"judged_on", "fitting samples, every fitting viewpoint held out once"},
+                                 {"model", profile.defaultModel},
+                                 {"measured", run.choice.measured}};
+    for (const timemodel::LearnCandidate& candidate : run.choice.candidates) {
+        choiceJson["candidates"][candidate.statistic] = {{"scale", candidate.scale},
+                                                         {"errors", errorsJson(candidate.crossValidated)}};
     }
     nlohmann::json otherJson = nlohmann::json::object();
-    for (const evaluation::OtherClockFit& other : run.otherClocks) {
+    for (const evaluation::OtherStatisticFit& other : run.otherStatistics) {
         nlohmann::json entries = nlohmann::json::array();
         for (const timemodel::ModelResult& r : other.models) {
             entries.push_back({{"name", r.name},
@@ -94,10 +98,12 @@ nlohmann::json calibrationJson(const CalibrateOptions& options, const evaluation
                                {"held_out_errors", errorsJson(r.heldOutErrors)},
                                {"fit_errors", errorsJson(r.fitErrors)}});
         }
-        otherJson[other.clock] = {{"models", entries},
-                                  {"split_half_median", other.repeatability.median},
-                                  {"split_half_p90", other.repeatability.p90}};
+        otherJson[other.statistic] = {{"scale", other.scale},
+                                      {"models", entries},
+                                      {"split_half_median", other.repeatability.median},
+                                      {"split_half_p90", other.repeatability.p90}};
     }
+    const timemodel::TimingSettings& timing = profile.timing;
     return {{"out", options.out},
             {"scene", profile.scene},
             {"width", profile.width},
@@ -111,50 +117,55 @@ nlohmann::json calibrationJson(const CalibrateOptions& options, const evaluation
             {"held_out_samples", run.heldOutSamples},
             {"viewpoints", profile.viewpoints},
             {"held_out_viewpoints", profile.heldOutViewpoints},
-            {"clock", profile.timing.clock},
-            {"clock_request", options.clock},
-            {"clock_choice", clockChoiceJson},
+            {"predicts", timing.predicts},
+            {"frame_clock", timing.frameClock},
+            {"learned_from", timing.learnedFrom},
+            {"learned_scale", timing.learnedScale},
+            {"learn_request", timing.learnRequest},
+            {"learn_choice", choiceJson},
             {"timing_spread_median", run.spread.median},
             {"timing_spread_p90", run.spread.p90},
             {"split_half_median", run.repeatability.median},
             {"split_half_p90", run.repeatability.p90},
-            {"seconds", profile.timing.seconds},
+            {"seconds", timing.seconds},
             {"default_model", profile.defaultModel},
             {"models", modelsJson(profile.models)},
-            {"other_clocks", otherJson}};
+            {"other_statistics", otherJson}};
 }
 
 void printCalibration(const CalibrateOptions& options, const evaluation::CalibrationResult& run) {
     const timemodel::DeviceProfile& profile = run.profile;
-    const std::string& clock = profile.timing.clock;
+    const timemodel::TimingSettings& timing = profile.timing;
     std::cout << "calibrated '" << profile.scene << "' at " << profile.width << "x" << profile.height << " on "
               << profile.machine.cpuModel << " (" << profile.machine.cores << " threads), " << profile.glRenderer
               << "\n";
     char line[512];
     std::snprintf(line, sizeof line,
                   "%zu samples: %zu fitted on %d viewpoints, %zu held out on %d viewpoints\n"
-                  "timing: clock %s, %d passes x %d draws (+%d warm-up); spread between passes: median %.1f%%, "
-                  "p90 %.1f%%\n"
-                  "repeatability: a held-out sample's time from the even passes against the odd ones differs by "
+                  "timing: %s clock, %d passes x %d draws (+%d warm-up); spread of the median between passes: "
+                  "median %.1f%%, p90 %.1f%%\n"
+                  "repeatability: a held-out sample's median from the even passes against the odd ones differs by "
                   "median %.1f%%, p90 %.1f%%\n",
                   profile.samples.size(), run.fitSamples, profile.viewpoints - profile.heldOutViewpoints,
-                  run.heldOutSamples, profile.heldOutViewpoints, clock.c_str(), profile.timing.rounds, options.repeats,
-                  options.warmup, 100.0 * run.spread.median, 100.0 * run.spread.p90, 100.0 * run.repeatability.median,
-                  100.0 * run.repeatability.p90);
+                  run.heldOutSamples, profile.heldOutViewpoints, timing.frameClock.c_str(), timing.rounds,
+                  timing.repeatsPerRound, timing.warmup, 100.0 * run.spread.median, 100.0 * run.spread.p90,
+                  100.0 * run.repeatability.median, 100.0 * run.repeatability.p90);
     std::cout << line;
-    const bool autoClock = options.clock == timemodel::kAutoClock;
-    if (autoClock && !run.choice.measured) {
-        std::cout << "clock auto: " << clock << ", the default: one pass leaves no repeatability to judge\n";
-    } else if (autoClock) {
-        std::cout << "clock auto: " << clock
-                  << ", the wall clock that repeated best on the fitting samples (split-half median ";
+    std::snprintf(line, sizeof line, "predicts: the median of a frame's draws; learned from %s x %.3f",
+                  timing.learnedFrom.c_str(), timing.learnedScale);
+    std::cout << line;
+    if (options.learnFrom == timemodel::kAutoStatistic && !run.choice.measured) {
+        std::cout << " (auto: one fitting fold leaves nothing to judge)";
+    } else if (options.learnFrom == timemodel::kAutoStatistic) {
+        std::cout << " (auto: least error against the median, every fitting viewpoint held out once:";
         for (std::size_t c = 0; c < run.choice.candidates.size(); ++c) {
-            std::snprintf(line, sizeof line, "%s%s %.1f%%", c ? ", " : "", run.choice.candidates[c].clock.c_str(),
-                          100.0 * run.choice.candidates[c].repeatability.median);
+            std::snprintf(line, sizeof line, "%s %s %.1f%%", c ? "," : "", run.choice.candidates[c].statistic.c_str(),
+                          100.0 * run.choice.candidates[c].crossValidated.mean);
             std::cout << line;
         }
-        std::cout << ")\n";
+        std::cout << ")";
     }
+    std::cout << "\n";
     std::cout << timemodel::formatErrorTable(profile.models);
     std::snprintf(line, sizeof line, "every viewpoint held out once (%d folds, %zu samples):", run.folds,
                   profile.samples.size());
@@ -169,9 +180,10 @@ void printCalibration(const CalibrateOptions& options, const evaluation::Calibra
     for (const timemodel::ModelResult& r : profile.models) {
         for (const std::string& note : r.fit.notes) std::cout << "  note (" << r.name << "): " << note << "\n";
     }
-    for (const evaluation::OtherClockFit& other : run.otherClocks) {
-        std::snprintf(line, sizeof line, "same draws, clock %s (repeatability %.1f%% / %.1f%%):", other.clock.c_str(),
-                      100.0 * other.repeatability.median, 100.0 * other.repeatability.p90);
+    for (const evaluation::OtherStatisticFit& other : run.otherStatistics) {
+        std::snprintf(line, sizeof line, "same draws, learned from %s x %.3f (repeatability %.1f%% / %.1f%%):",
+                      other.statistic.c_str(), other.scale, 100.0 * other.repeatability.median,
+                      100.0 * other.repeatability.p90);
         std::cout << line;
         for (const timemodel::ModelResult& r : other.models) {
             if (!r.fitted) continue;
@@ -181,23 +193,58 @@ void printCalibration(const CalibrateOptions& options, const evaluation::Calibra
         }
         std::cout << "\n";
     }
-    std::snprintf(line, sizeof line, "wrote %s (%.1f s)\n", options.out.c_str(), profile.timing.seconds);
+    std::snprintf(line, sizeof line, "wrote %s (timing took %.1f s)\n", options.out.c_str(), timing.seconds);
     std::cout << line;
 }
 
+// --refit: the profile's samples fitted again to predict the median (timemodel::refitProfile).
+void runRefit(const CalibrateOptions& options) {
+    evaluation::CalibrationResult run;
+    timemodel::ProfileFit fit;
+    try {
+        run.profile = timemodel::loadProfile(options.refit);
+        fit = timemodel::refitProfile(run.profile, options.learnFrom);
+    } catch (const timemodel::TimeModelError& error) {
+        throw UsageError(error.what());
+    }
+    run.choice = fit.choice;
+    for (timemodel::StatisticFit& other : fit.others) {
+        run.otherStatistics.push_back({other.statistic, other.scale, std::move(other.models), {}});
+    }
+    for (const timemodel::ProfileSample& s : run.profile.samples) (s.heldOut ? run.heldOutSamples : run.fitSamples)++;
+    run.spread = {0, 0.0, run.profile.timing.medianSpread, run.profile.timing.p90Spread, 0.0};
+    run.repeatability = {0, 0.0, run.profile.timing.splitHalfMedian, run.profile.timing.splitHalfP90, 0.0};
+    const std::vector<int> folds = timemodel::profileFolds(run.profile);
+    run.folds = folds.empty() ? 0 : *std::max_element(folds.begin(), folds.end()) + 1;
+    timemodel::saveProfile(options.out, run.profile);
+    if (options.output.json) {
+        nlohmann::json report = calibrationJson(options, run);
+        report["refit"] = options.refit;
+        printJson(report);
+        return;
+    }
+    std::cout << "refitted " << options.refit << " from its " << run.profile.samples.size()
+              << " samples (nothing timed)\n";
+    printCalibration(options, run);
+}
+
 void runCalibrate(const CalibrateOptions& options) {
+    if (!options.refit.empty()) {
+        runRefit(options);
+        return;
+    }
     evaluation::CalibrationSettings settings;  // its start: the time budget counts from here
     settings.rounds = options.rounds;
     settings.maxRounds = options.maxRounds;
     settings.timeBudgetSeconds = options.timeBudget;
     settings.repeats = options.repeats;
     settings.warmup = options.warmup;
-    settings.clock = options.clock;
+    settings.learnFrom = options.learnFrom;
     settings.seed = options.seed;
     renderer::RenderSettings renderSettings;
     parseSize(options.size, renderSettings.width, renderSettings.height);
     renderSettings.shading = renderer::parseShading(options.shading);
-    renderSettings.backend = renderer::parseBackend(options.backend);
+    options.backend.applyTo(renderSettings);
     const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
 
     timemodel::CalibrationOptions planOptions;
@@ -230,9 +277,9 @@ void runCalibrate(const CalibrateOptions& options) {
     printCalibration(options, run);
 }
 
-std::vector<std::string> clockChoices() {
-    std::vector<std::string> names = timemodel::timingClockNames();
-    names.insert(names.begin(), timemodel::kAutoClock);
+std::vector<std::string> learnChoices() {
+    std::vector<std::string> names = timemodel::timingStatisticNames();
+    names.insert(names.begin(), timemodel::kAutoStatistic);
     return names;
 }
 
@@ -252,7 +299,7 @@ void addCalibrateCommand(CLI::App& app) {
     addSceneSeedOption(*command, options->sceneSeed);
     addSizeOption(*command, options->size, "WIDTHxHEIGHT of the timed frames");
     addShadingOption(*command, options->shading);
-    addBackendOption(*command, options->backend);
+    addBackendOptions(*command, options->backend);
     command->add_option("--jitter", options->jitter, "Extra viewpoints around each named view")
         ->capture_default_str()
         ->check(CLI::Range(0, 100));
@@ -274,11 +321,17 @@ void addCalibrateCommand(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::Range(0, 100));
     command
-        ->add_option("--clock", options->clock,
-                     "Fitted time: auto (the wall clock that repeats best in this run), wall-min (least wall "
-                     "time), wall-min-median (median of each pass's least), wall-median, or cpu (process CPU time)")
+        ->add_option("--learn-from", options->learnFrom,
+                     "What the models are fitted on (they always predict the median of a frame's draws): auto (what "
+                     "predicts the median best on the fitting viewpoints), median, least-median (median of each "
+                     "pass's least), least, or cpu (process CPU time)")
         ->capture_default_str()
-        ->check(CLI::IsMember(clockChoices()));
+        ->check(CLI::IsMember(learnChoices()));
+    command
+        ->add_option("--refit", options->refit,
+                     "Refit this profile's recorded samples (no frame is timed): a profile written before every "
+                     "profile predicted the median of a frame's draws comes to predict it")
+        ->check(CLI::ExistingFile);
     command->add_option("--out", options->out, "Device profile to write (JSON)")->capture_default_str();
     addOutputOptions(*command, options->output);
     command->callback([options] { runCalibrate(*options); });

@@ -19,23 +19,28 @@ struct EstimateOptions {
     std::string model;  // empty = the profile's default
     std::string size;   // empty = the profile's
     std::string shading;  // empty = the profile's
-    std::string backend = "osmesa";  // the context whose GL renderer is compared with the profile's
+    BackendOptions backend;  // the context whose GL renderer and frame clock are compared with the profile's
     std::uint32_t seed = 1;
     bool noRendererCheck = false;
     OutputOptions output;
 };
 
-// The current OpenGL renderer string, from a context on an empty scene (no upload).
-std::string currentGlRenderer(const std::string& backend, std::vector<std::string>& warnings) {
+// The current OpenGL renderer string and frame clock, from a context on an empty scene (no
+// upload); both empty when no context opens.
+struct CurrentRenderer {
+    std::string glRenderer, frameClock;
+};
+CurrentRenderer currentRenderer(const BackendOptions& backend, std::vector<std::string>& warnings) {
     try {
         static const scenes::Scene empty;
         renderer::RenderSettings settings;
         settings.width = settings.height = 1;
-        settings.backend = renderer::parseBackend(backend);
-        return renderer::Renderer(empty, settings).glRendererString();
+        backend.applyTo(settings);
+        const renderer::Renderer context(empty, settings);
+        return {context.glRendererString(), renderer::frameClockName(context.frameClock())};
     } catch (const std::exception& error) {
         warnings.push_back(std::string("could not open a renderer to compare with the profile: ") + error.what());
-        return "";
+        return {};
     }
 }
 
@@ -76,9 +81,9 @@ void runEstimate(const EstimateOptions& options) {
     if (profile.scene != scene.name) {
         warnings.push_back("the profile was calibrated on scene '" + profile.scene + "', not '" + scene.name + "'");
     }
-    const std::string glRenderer = options.noRendererCheck ? std::string() : currentGlRenderer(options.backend, warnings);
-    for (const std::string& w :
-         timemodel::profileWarnings(profile, glRenderer, width, height, timemodel::describeMachine(), shading)) {
+    const CurrentRenderer current = options.noRendererCheck ? CurrentRenderer{} : currentRenderer(options.backend, warnings);
+    for (const std::string& w : timemodel::profileWarnings(profile, current.glRenderer, width, height,
+                                                           timemodel::describeMachine(), shading, current.frameClock)) {
         warnings.push_back(w);
     }
 
@@ -122,7 +127,7 @@ void addEstimateCommand(CLI::App& app) {
         ->add_option("--shading", options->shading,
                      "lambert or pbr: how the frame is drawn (default: as the profile was measured)")
         ->check(CLI::IsMember({"lambert", "pbr"}));
-    addBackendOption(*command, options->backend);
+    addBackendOptions(*command, options->backend);
     addSceneSeedOption(*command, options->seed);
     command->add_flag("--no-renderer-check", options->noRendererCheck,
                       "Do not open an OpenGL context to compare the renderer with the profile's");

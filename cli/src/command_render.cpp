@@ -5,6 +5,7 @@
 #include "cli_common.hpp"
 #include "renderer/renderer.hpp"
 #include "scenes/builtin.hpp"
+#include "timemodel/timing.hpp"
 
 namespace lodopt::cli {
 
@@ -20,7 +21,7 @@ void addRenderCommand(CLI::App& app) {
         std::uint32_t seed = 1;
         bool time = false;
         int repeats = 7;
-        std::string backend = "osmesa";
+        BackendOptions backend;
         OutputOptions output;
     };
     auto options = std::make_shared<Options>();
@@ -31,11 +32,11 @@ void addRenderCommand(CLI::App& app) {
                         "One level per object, comma-separated (-1 = not drawn); default all 0 (the reference)");
     addSizeOption(*command, options->size, "WIDTHxHEIGHT");
     addShadingOption(*command, options->shading);
-    addBackendOption(*command, options->backend);
+    addBackendOptions(*command, options->backend);
     command->add_option("--out", options->out, "Color image: .png, .jpg or .ppm")->capture_default_str();
     command->add_option("--depth-out", options->depthOut, "Also write depth as floats: .exr or .pfm");
     addSceneSeedOption(*command, options->seed);
-    command->add_flag("--time", options->time, "Also measure the render time (median of --repeats)");
+    command->add_flag("--time", options->time, "Also time the frame: the median of --repeats draws after 2 untimed ones, on the frame clock (what every device profile predicts)");
     command->add_option("--repeats", options->repeats, "Timed repeats for --time")->check(CLI::Range(1, 1000));
     addOutputOptions(*command, options->output);
     command->callback([options] {
@@ -49,7 +50,7 @@ void addRenderCommand(CLI::App& app) {
         renderer::RenderSettings settings;
         parseSize(options->size, settings.width, settings.height);
         settings.shading = renderer::parseShading(options->shading);
-        settings.backend = renderer::parseBackend(options->backend);
+        options->backend.applyTo(settings);
         scenes::Scene scene = scenes::loadScene(options->scene, options->seed);
         const int view = scenes::findView(scene, options->view);
         scenes::Combination combination = scenes::referenceCombination(scene);
@@ -61,7 +62,8 @@ void addRenderCommand(CLI::App& app) {
         renderer::Frame frame = renderer.render(combination, scene.views[view]);
         renderer::writeColorImage(options->out, frame);
         if (!options->depthOut.empty()) renderer::writeDepthImage(options->depthOut, frame);
-        double renderMs = options->time ? renderer.timeRender(combination, scene.views[view], options->repeats, 2) : 0.0;
+        renderer::FrameTimes times;
+        if (options->time) times = renderer.timeFrames(combination, scene.views[view], options->repeats, 2);
         if (options->output.json) {
             nlohmann::json result = {{"scene", scene.name},
                                      {"view", scene.views[view].name},
@@ -72,17 +74,32 @@ void addRenderCommand(CLI::App& app) {
                                      {"out", options->out},
                                      {"renderer", renderer.glRendererString()},
                                      {"gl_version", renderer.glVersionString()},
-                                     {"backend", options->backend},
+                                     {"backend", options->backend.backend},
                                      {"platform", renderer.platformDescription()}};
             if (!options->depthOut.empty()) result["depth_out"] = options->depthOut;
-            if (options->time) result["render_ms"] = renderMs;
+            if (options->time) {
+                const auto medianOf = [](const std::vector<double>& draws) -> nlohmann::json {
+                    if (draws.empty()) return nullptr;  // no timer queries
+                    return timemodel::median(draws);
+                };
+                result["render_ms"] = times.median();
+                result["timing"] = {{"frame_clock", renderer::frameClockName(times.clock)},
+                                    {"draws", options->repeats},
+                                    {"warmup", 2},
+                                    {"wall_ms", medianOf(times.wallMs)},
+                                    {"gpu_ms", medianOf(times.gpuMs)},
+                                    {"cpu_ms", medianOf(times.cpuMs)}};
+            }
             printJson(result);
         } else {
             std::cout << "wrote " << options->out;
             if (!options->depthOut.empty()) std::cout << " and " << options->depthOut;
             std::cout << " (" << scene.name << ", view '" << scene.views[view].name << "', " << settings.width << "x"
                       << settings.height << ")\n";
-            if (options->time) std::cout << "render_ms " << renderMs << " (median of " << options->repeats << ")\n";
+            if (options->time) {
+                std::cout << "render_ms " << times.median() << " (median of " << options->repeats << " draws, "
+                          << renderer::frameClockName(times.clock) << " clock)\n";
+            }
         }
     });
 }

@@ -62,7 +62,6 @@ struct ScheduleOptions {
     // (wall-min-median) fits. The median of 3 moved by more than 10% between repeated
     // measurements of one frame a third of the time on an idle machine (docs/scheduler.md).
     int repeats = 5;
-    std::string frameTime = "min";
     // After the path, the first, middle and last frames' decisions are each timed this often back to
     // back: how far one frame's measurement scatters here bounds what any scheduler can put
     // within ±10% of the budget (scheduler/measurement.hpp). Not part of a frame's row.
@@ -70,7 +69,7 @@ struct ScheduleOptions {
     int batch = 25;
     bool resume = false;
     std::string outDir = "out/schedule";
-    std::string backend = "osmesa";
+    BackendOptions backend;
 };
 
 // Everything that changes a frame's row, keyed by option name (--batch does not). The
@@ -102,8 +101,7 @@ nlohmann::json checkpointIdentity(const ScheduleOptions& o, const scheduler::Sch
             {"feedback-beta", o.beta},
             {"frames", o.frames},
             {"stride", o.stride},
-            {"repeats", o.repeats},
-            {"frame-time", o.frameTime}};
+            {"repeats", o.repeats}};
 }
 
 scheduler::SchedulerParameters schedulerParameters(const ScheduleOptions& options) {
@@ -128,8 +126,6 @@ evaluation::WalkOptions walkOptions(const ScheduleOptions& options) {
     walk.feedback = !options.noFeedback;
     walk.checkFeatures = options.checkFeatures;
     walk.repeats = options.repeats;
-    walk.statistic =
-        options.frameTime == "min" ? renderer::Renderer::Statistic::Min : renderer::Renderer::Statistic::Median;
     return walk;
 }
 
@@ -232,6 +228,11 @@ ScheduleTotals totalsOf(const std::vector<evaluation::WalkFrame>& rows) {
 }
 
 bool reachable(const evaluation::WalkFrame& r) { return r.decision.budgetReachable; }
+// Binding: even the finest visible frame is predicted over the budget, so meeting it is the
+// scheduler's doing, not the scene's.
+bool bindsBudget(const evaluation::WalkFrame& r, double budget) {
+    return r.decision.budgetReachable && r.finestPredictedMs > budget;
+}
 double measuredOf(const evaluation::WalkFrame& r) { return r.measuredMs; }
 double baselineOf(const evaluation::WalkFrame& r) { return r.baselineMeasuredMs; }
 
@@ -249,17 +250,14 @@ struct ScheduleRun {
     double finalFeedbackScale = 1.0;
     std::vector<evaluation::WalkFrame> rows;
     evaluation::MeasurementCeiling ceiling;
+    std::string frameClock;  // with --render: renderer::frameClockName of the timed frames
 };
 
 nlohmann::json summaryJson(const ScheduleRun& run, const ScheduleTotals& t) {
     const ScheduleOptions& options = run.options;
     const std::vector<evaluation::WalkFrame>& rows = run.rows;
     const double budget = options.budgetMs;
-    // Binding: even the finest visible frame is predicted over the budget, so meeting it is
-    // the scheduler's doing, not the scene's.
-    auto binding = [&](const evaluation::WalkFrame& r) {
-        return r.decision.budgetReachable && r.finestPredictedMs > budget;
-    };
+    auto binding = [&](const evaluation::WalkFrame& r) { return bindsBudget(r, budget); };
     nlohmann::json summary = {
         {"scene", run.scene.name},
         {"path", run.path.name},
@@ -275,7 +273,9 @@ nlohmann::json summaryJson(const ScheduleRun& run, const ScheduleTotals& t) {
         {"switch_margin", run.parameters.switchControl.raiseMargin},
         {"switch_refill", run.parameters.switchControl.refillBelow},
         {"feedback", options.render && !options.noFeedback},
-        {"frame_time", options.render ? nlohmann::json{{"statistic", options.frameTime}, {"draws", options.repeats}}
+        {"frame_time", options.render ? nlohmann::json{{"statistic", "median"},
+                                                       {"clock", run.frameClock},
+                                                       {"draws", options.repeats}}
                                       : nlohmann::json(nullptr)},
         {"coefficients", options.coefficients.empty() ? "published defaults" : options.coefficients},
         {"time_model", run.timeModel},
@@ -306,6 +306,16 @@ nlohmann::json summaryJson(const ScheduleRun& run, const ScheduleTotals& t) {
     }
     const nlohmann::json ceiling = ceilingJson(run.ceiling);
     if (!ceiling.is_null()) summary["measurement_ceiling"] = ceiling;
+    // Goal 1 as docs/scheduler.md states it: the binding frames' share in the band over what the
+    // machine's clock allows (the ceiling); null when either is missing.
+    const BudgetShares bound = budgetShares(rows, budget, measuredOf, binding);
+    const bool judged = bound.frames > 0 && !std::isnan(run.ceiling.ceiling) && run.ceiling.ceiling > 0.0;
+    summary["goal_1"] = {{"binding_frames", bound.frames},
+                         {"within_10_percent", bound.frames > 0 ? nlohmann::json(bound.within10) : nlohmann::json(nullptr)},
+                         {"ceiling", std::isnan(run.ceiling.ceiling) ? nlohmann::json(nullptr)
+                                                                     : nlohmann::json(run.ceiling.ceiling)},
+                         {"of_ceiling", judged ? nlohmann::json(bound.within10 / run.ceiling.ceiling)
+                                               : nlohmann::json(nullptr)}};
     if (!options.noFitness) {
         summary["fitness"] = spreadJson(spreadOf(t.fitness));
         if (!options.noBaseline) summary["baseline_fitness"] = spreadJson(spreadOf(t.baselineFitness));
@@ -339,6 +349,14 @@ void printSummary(const ScheduleRun& run, const ScheduleTotals& t, const std::fi
                       << options.noiseProbe << " times fits a ±10% band at best that often (frames";
             for (const evaluation::CeilingProbe& p : run.ceiling.probes) std::cout << ' ' << p.frame;
             std::cout << ")\n";
+            const BudgetShares bound =
+                budgetShares(rows, budget, measuredOf, [&](const evaluation::WalkFrame& r) { return bindsBudget(r, budget); });
+            if (bound.frames > 0 && run.ceiling.ceiling > 0.0) {
+                std::cout << "  goal 1: " << 100.0 * bound.within10 << "% of " << bound.frames
+                          << " binding frames within ±10%, " << std::setprecision(2)
+                          << bound.within10 / run.ceiling.ceiling << " of the ceiling (goal >= 0.9)\n"
+                          << std::setprecision(0);
+            }
         }
         if (!options.noFitness) {
             std::cout << std::setprecision(4) << "  fitness " << spreadOf(t.fitness).mean << " mean";
@@ -354,7 +372,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     renderer::RenderSettings settings;
     parseSize(options.size, settings.width, settings.height);
     settings.shading = renderer::parseShading(options.shading);
-    settings.backend = renderer::parseBackend(options.backend);
+    options.backend.applyTo(settings);
     const scenes::Scene scene = scenes::loadScene(options.scene, options.sceneSeed);
     if (scene.objects.empty()) throw UsageError("scene '" + scene.name + "' has no objects");
     const scenes::CameraPath path =
@@ -364,7 +382,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     std::unique_ptr<renderer::Renderer> renderer;
     if (options.render) renderer = std::make_unique<renderer::Renderer>(scene, settings);
     const TimeEstimator estimator = loadTimeEstimator(options.profile, options.model, scene.name, settings,
-                                                      renderer ? renderer->glRendererString() : "", std::cerr);
+                                                      renderer.get(), std::cerr);
     const scheduler::SchedulerParameters parameters = schedulerParameters(options);
     const scheduler::FeatureMode mode = parseFeatureMode(options.features);
 
@@ -381,8 +399,9 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     const auto setupStart = std::chrono::steady_clock::now();
     const scheduler::SceneIndex index(scene, settings.width, settings.height, mode, 0, estimator.model->readFeatures());
     scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
-    ScheduleRun run{options, scene, path, settings, parameters, mode, estimator.name, index.objectCount(), 0.0, 1.0, {}, {}};
+    ScheduleRun run{options, scene, path, settings, parameters, mode, estimator.name, index.objectCount(), 0.0, 1.0, {}, {}, {}};
     run.setupSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - setupStart).count();
+    if (renderer) run.frameClock = renderer::frameClockName(renderer->frameClock());
 
     const evaluation::WalkOptions walking = walkOptions(options);
     evaluation::ScheduleWalk walk(scene, path, frameScheduler, renderer.get(), walking);
@@ -390,7 +409,7 @@ void runSchedule(const ScheduleOptions& options, const OutputOptions& output) {
     run.finalFeedbackScale = frameScheduler.model().feedbackScale();
     if (renderer && options.noiseProbe > 0) {
         run.ceiling = evaluation::probeMeasurementCeiling(*renderer, path, run.rows, options.noiseProbe,
-                                                          walking.repeats, walking.statistic);
+                                                          walking.repeats);
     }
 
     const ScheduleTotals totals = totalsOf(run.rows);
@@ -427,7 +446,7 @@ void addScheduleCommand(CLI::App& app) {
                       "Also predict each decision from exact features (exact_predicted_ms; slow)");
     addSizeOption(*command, options->size, "Render size WIDTHxHEIGHT (as calibrated)");
     addShadingOption(*command, options->shading);
-    addBackendOption(*command, options->backend);
+    addBackendOptions(*command, options->backend);
     addProfileOptions(*command, options->profile, options->model);
     command->add_option("--organisation", options->organisation, "flat (DONG15) or tiles (CITY17 quadtree)")
         ->check(CLI::IsMember({"flat", "tiles"}))
@@ -465,10 +484,6 @@ void addScheduleCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--repeats", options->repeats, "With --render: timed draws per frame")
         ->check(CLI::Range(1, 100))
-        ->capture_default_str();
-    command->add_option("--frame-time", options->frameTime,
-                        "With --render: a frame's measured time is the median or the least of its timed draws")
-        ->check(CLI::IsMember({"median", "min"}))
         ->capture_default_str();
     command
         ->add_option("--noise-probe", options->noiseProbe,

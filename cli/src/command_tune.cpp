@@ -455,7 +455,7 @@ void runTune(TuneOptions options, const OutputOptions& output) {
     std::ostringstream repeatedWarnings;
     const TimeEstimator estimator =
         loadTimeEstimator(options.optimize.profile, options.optimize.model, prepared.scene.name, prepared.settings,
-                          prepared.renderer->glRendererString(), repeatedWarnings);
+                          prepared.renderer.get(), repeatedWarnings);
     scheduler::FrameScheduler frameScheduler(index, estimator.model->clone(), parameters);
 
     run.settings = tuningSettings(run, index, views);

@@ -31,7 +31,7 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
     PreparedScene prepared;
     parseSize(options.size, prepared.settings.width, prepared.settings.height);
     prepared.settings.shading = renderer::parseShading(options.shading);
-    prepared.settings.backend = renderer::parseBackend(options.backend);
+    options.backend.applyTo(prepared.settings);
     parseWeights(options.weights, prepared.metrics);
     prepared.scene = scenes::loadScene(options.scene, options.sceneSeed);
     if (options.view == "all") {
@@ -42,7 +42,7 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
     if (prepared.scene.objects.empty()) throw UsageError("scene '" + prepared.scene.name + "' has no objects");
     prepared.renderer = std::make_unique<renderer::Renderer>(prepared.scene, prepared.settings);
     TimeEstimator estimator = loadTimeEstimator(options.profile, options.model, prepared.scene.name, prepared.settings,
-                                                prepared.renderer->glRendererString(), std::cerr);
+                                                prepared.renderer.get(), std::cerr);
     prepared.estimator = estimator.estimate;
     prepared.readFeatures = estimator.model->readFeatures();
     prepared.timeModelName = estimator.name;

@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_common.hpp"
+
 #include "evaluation/evaluation.hpp"
 #include "evaluation/search_view.hpp"
 #include "evaluation/time_cost.hpp"
@@ -32,7 +34,7 @@ struct OptimizeOptions {
     std::uint32_t sceneSeed = 1;  // a built-in scene's variant (--scene-seed)
     std::string size = "512x512";
     std::string shading = renderer::shadingName(renderer::kDefaultShading);  // renderer::Shading by name
-    std::string backend = "osmesa";  // renderer::Backend by name (bench times on it)
+    BackendOptions backend;  // the platform and frame clock bench times on
     std::string evalPath = "fast";
     int threads = std::max(1, int(std::thread::hardware_concurrency()));
     // Fast-path evaluation states (LayerEvaluator); tune keeps one evaluator per view and

@@ -290,7 +290,8 @@ void addProfileSection(ReportContext& context, const fs::path& file) {
         std::to_string(profile.width) + "x" + std::to_string(profile.height) + " on " + profile.glRenderer + ", " +
         profile.machine.cpuModel + " (" + std::to_string(profile.machine.cores) + " threads), " + profile.created +
         "; " + std::to_string(profile.samples.size()) + " samples from " + std::to_string(profile.viewpoints) +
-        " viewpoints (" + std::to_string(profile.heldOutViewpoints) + " held out), clock " + profile.timing.clock +
+        " viewpoints (" + std::to_string(profile.heldOutViewpoints) + " held out); predicts the " + profile.timing.predicts +
+        " of a frame's draws on the " + profile.timing.frameClock + " clock, learned from " + profile.timing.learnedFrom +
         ", default model " + profile.defaultModel + ".");
     addProfileErrors(context, profile);
     if (!profile.samples.empty()) addProfileScatter(context, profile);

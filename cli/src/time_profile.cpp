@@ -7,7 +7,7 @@ namespace lodopt::cli {
 
 TimeEstimator loadTimeEstimator(const std::string& profilePath, const std::string& modelName,
                                 const std::string& sceneName, const renderer::RenderSettings& settings,
-                                const std::string& glRenderer, std::ostream& warnings) {
+                                const renderer::Renderer* timedOn, std::ostream& warnings) {
     timemodel::DeviceProfile profile;
     std::string source;
     try {
@@ -29,8 +29,9 @@ TimeEstimator loadTimeEstimator(const std::string& profilePath, const std::strin
         throw UsageError(error.what());
     }
     for (const std::string& warning :
-         timemodel::profileWarnings(profile, glRenderer, settings.width, settings.height, timemodel::describeMachine(),
-                                    renderer::shadingName(settings.shading))) {
+         timemodel::profileWarnings(profile, timedOn ? timedOn->glRendererString() : "", settings.width,
+                                    settings.height, timemodel::describeMachine(), renderer::shadingName(settings.shading),
+                                    timedOn ? renderer::frameClockName(timedOn->frameClock()) : "")) {
         warnings << "lodopt: warning: " << source << ": " << warning << "\n";
     }
     TimeEstimator estimator;

@@ -20,11 +20,12 @@ struct TimeEstimator {
 
 // Loads `profilePath` (empty = the profile shipped for `sceneName`, or for the default scene)
 // and picks `modelName` (empty = the profile's default model). Warns on `warnings` when the
-// profile was made on another renderer, render size or machine. Throws UsageError for an
+// profile was made on another renderer, frame clock, render size or machine (`timedOn`: the
+// renderer the command draws with; null skips the renderer's checks). Throws UsageError for an
 // unreadable profile or an unknown model.
 TimeEstimator loadTimeEstimator(const std::string& profilePath, const std::string& modelName,
                                 const std::string& sceneName, const renderer::RenderSettings& settings,
-                                const std::string& glRenderer, std::ostream& warnings);
+                                const renderer::Renderer* timedOn, std::ostream& warnings);
 
 
 }  // namespace lodopt::cli

@@ -234,8 +234,8 @@ std::vector<TimeModelRow> measureTimeModels(const SearchView& view, renderer::Re
         for (std::size_t o = 0; o < combination.size(); ++o) {
             combination[o] = std::uniform_int_distribution<int>(0, int(scene.objects[o].levels.size()) - 1)(rng);
         }
-        // One batch as the profile's clock takes it (one untimed draw first).
-        measured.push_back(batchTime(timeDraws(renderer, combination, camera, repeats, 1), profile.timing.clock));
+        // What every profile predicts: the median of the frame's draws (one untimed draw first).
+        measured.push_back(renderer.timeFrames(combination, camera, repeats, 1).median());
         combinations.push_back(std::move(combination));
     }
     // Every feature: the cost's table holds only what the chosen model reads.

@@ -1,7 +1,5 @@
 #include "evaluation/device_timing.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cassert>
 #include <stdexcept>
@@ -12,14 +10,12 @@ namespace lodopt::evaluation {
 
 namespace {
 
-double processCpuMs() {
-    timespec now{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-    return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
-}
-
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double medianOr0(const std::vector<double>& values) {
+    return values.empty() ? 0.0 : timemodel::median(values);
 }
 
 // Every sample timed in passes; returns the pass count.
@@ -40,11 +36,14 @@ int timePasses(renderer::Renderer& renderer, const timemodel::CalibrationPlan& p
         std::size_t done = 0;
         for (std::size_t index : order) {
             const timemodel::PlannedSample& planned = plan.samples[index];
-            const DrawTimes times = timeDraws(renderer, planned.combination, plan.viewpoints[planned.viewpoint].camera,
-                                              settings.repeats, settings.warmup);
-            timings[index].leastWall.push_back(times.wallMin);
-            timings[index].medianWall.push_back(times.wallMedian);
-            timings[index].medianCpu.push_back(times.cpuMedian);
+            const renderer::FrameTimes times = renderer.timeFrames(
+                planned.combination, plan.viewpoints[planned.viewpoint].camera, settings.repeats, settings.warmup);
+            timemodel::PassTimes& t = timings[index];
+            t.least.push_back(times.least());
+            t.median.push_back(times.median());
+            t.cpu.push_back(medianOr0(times.cpuMs));
+            t.wallMedian.push_back(medianOr0(times.wallMs));
+            if (!times.gpuMs.empty()) t.gpuMedian.push_back(medianOr0(times.gpuMs));
             if (progress) progress(passes, ++done, count);
         }
         slowestPass = std::max(slowestPass, secondsSince(settings.start) - passStart);
@@ -54,28 +53,6 @@ int timePasses(renderer::Renderer& renderer, const timemodel::CalibrationPlan& p
 }
 
 }  // namespace
-
-DrawTimes timeDraws(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
-                    int repeats, int warmup) {
-    assert(repeats >= 1);
-    for (int i = 0; i < warmup; ++i) renderer.drawAndFinish(combination, camera);
-    std::vector<double> wall, cpu;
-    for (int i = 0; i < repeats; ++i) {
-        const double cpuStart = processCpuMs();
-        const auto wallStart = std::chrono::steady_clock::now();
-        renderer.drawAndFinish(combination, camera);
-        const auto wallStop = std::chrono::steady_clock::now();
-        cpu.push_back(processCpuMs() - cpuStart);
-        wall.push_back(std::chrono::duration<double, std::milli>(wallStop - wallStart).count());
-    }
-    return {*std::min_element(wall.begin(), wall.end()), timemodel::median(wall), timemodel::median(cpu)};
-}
-
-double batchTime(const DrawTimes& times, const std::string& clock) {
-    if (clock == "cpu") return times.cpuMedian;
-    if (clock == "wall-median") return times.wallMedian;
-    return times.wallMin;
-}
 
 CalibrationResult calibrateDevice(const scenes::Scene& scene, renderer::Renderer& renderer,
                                   const timemodel::CalibrationPlan& plan, std::uint64_t planSeed,
@@ -92,67 +69,43 @@ CalibrationResult calibrateDevice(const scenes::Scene& scene, renderer::Renderer
 
     CalibrationResult result;
     result.folds = plan.folds;
-    std::vector<bool> heldOut(count);
-    for (std::size_t i = 0; i < count; ++i) heldOut[i] = plan.viewpoints[plan.samples[i].viewpoint].heldOut;
-    std::vector<bool> fitting = heldOut;
-    fitting.flip();
-    result.choice = timemodel::chooseMostRepeatableClock(timings, fitting);
-    const std::string clock = settings.clock == timemodel::kAutoClock ? result.choice.clock : settings.clock;
-
     timemodel::DeviceProfile& profile = result.profile;
-    std::vector<timemodel::Sample> fitSamples, heldOutSamples;
+    std::vector<bool> heldOut(count);
+    std::vector<int> folds(count);
     std::vector<double> spreads;
     for (std::size_t i = 0; i < count; ++i) {
         const timemodel::PlannedSample& planned = plan.samples[i];
         const timemodel::PassTimes& t = timings[i];
+        heldOut[i] = plan.viewpoints[planned.viewpoint].heldOut;
+        folds[i] = plan.viewpoints[planned.viewpoint].fold;
         timemodel::ProfileSample recorded;
-        recorded.wallMinMs = timemodel::timeFromPasses("wall-min", t);
-        recorded.wallMinMedianMs = timemodel::timeFromPasses("wall-min-median", t);
-        recorded.wallMedianMs = timemodel::timeFromPasses("wall-median", t);
+        recorded.leastMs = timemodel::timeFromPasses("least", t);
+        recorded.leastMedianMs = timemodel::timeFromPasses("least-median", t);
+        recorded.medianMs = timemodel::timeFromPasses("median", t);
         recorded.cpuMs = timemodel::timeFromPasses("cpu", t);
-        timemodel::Sample& sample = recorded.sample;
-        sample.features = tables[planned.viewpoint].features(planned.combination);
-        sample.measuredMs = timemodel::timeOnClock(recorded, clock);
-        sample.viewpoint = planned.viewpoint;
-        if (sample.measuredMs > 0.0) spreads.push_back(timemodel::passSpread(timemodel::perPassValues(clock, t)));
+        recorded.wallMedianMs = medianOr0(t.wallMedian);
+        recorded.gpuMedianMs = medianOr0(t.gpuMedian);
+        recorded.sample.features = tables[planned.viewpoint].features(planned.combination);
+        recorded.sample.measuredMs = recorded.medianMs;
+        recorded.sample.viewpoint = planned.viewpoint;
         recorded.heldOut = heldOut[i];
-        (recorded.heldOut ? heldOutSamples : fitSamples).push_back(sample);
+        recorded.fold = folds[i];
+        if (recorded.medianMs > 0.0) spreads.push_back(timemodel::passSpread(t.median));
         profile.samples.push_back(recorded);
     }
-    result.fitSamples = fitSamples.size();
-    result.heldOutSamples = heldOutSamples.size();
-    profile.models = timemodel::fitAllModels(fitSamples, heldOutSamples);
-    {  // every viewpoint held out once, from the same draws
-        std::vector<timemodel::Sample> all;
-        std::vector<int> folds;
-        for (std::size_t i = 0; i < count; ++i) {
-            all.push_back(profile.samples[i].sample);
-            folds.push_back(plan.viewpoints[plan.samples[i].viewpoint].fold);
-        }
-        const std::vector<timemodel::ErrorStats> rotated = timemodel::rotatedHeldOutErrors(all, folds);
-        for (std::size_t m = 0; m < profile.models.size() && m < rotated.size(); ++m) {
-            profile.models[m].rotatedErrors = rotated[m];
-        }
+    timemodel::ProfileFit fit;
+    try {
+        fit = timemodel::fitProfile(profile, folds, settings.learnFrom);
+    } catch (const timemodel::TimeModelError& error) {
+        throw std::runtime_error(error.what());
     }
-    const bool anyFitted = std::any_of(profile.models.begin(), profile.models.end(),
-                                       [](const timemodel::ModelResult& r) { return r.fitted; });
-    if (!anyFitted) {
-        std::string reasons;
-        for (const auto& r : profile.models) reasons += "\n  " + r.name + ": " + r.failure;
-        throw std::runtime_error("no time model could be fitted:" + reasons);
+    result.choice = fit.choice;
+    for (timemodel::StatisticFit& other : fit.others) {
+        OtherStatisticFit entry{other.statistic, other.scale, std::move(other.models), {}};
+        entry.repeatability = timemodel::splitHalfRepeatability(other.statistic, timings, heldOut);
+        result.otherStatistics.push_back(std::move(entry));
     }
-
-    for (const std::string& other : timemodel::timingClockNames()) {
-        if (other == clock) continue;
-        std::vector<timemodel::Sample> fitOther, heldOutOther;
-        for (const timemodel::ProfileSample& recorded : profile.samples) {
-            timemodel::Sample sample = recorded.sample;
-            sample.measuredMs = timemodel::timeOnClock(recorded, other);
-            (recorded.heldOut ? heldOutOther : fitOther).push_back(sample);
-        }
-        result.otherClocks.push_back({other, timemodel::fitAllModels(fitOther, heldOutOther),
-                                      timemodel::splitHalfRepeatability(other, timings, heldOut)});
-    }
+    for (const timemodel::ProfileSample& s : profile.samples) (s.heldOut ? result.heldOutSamples : result.fitSamples)++;
 
     profile.created = timemodel::currentDateUtc();
     profile.machine = timemodel::describeMachine();
@@ -167,17 +120,17 @@ CalibrationResult calibrateDevice(const scenes::Scene& scene, renderer::Renderer
     profile.heldOutViewpoints = static_cast<int>(std::count_if(
         plan.viewpoints.begin(), plan.viewpoints.end(), [](const timemodel::Viewpoint& v) { return v.heldOut; }));
     result.spread = timemodel::summarizeErrors(spreads);
-    result.repeatability = timemodel::splitHalfRepeatability(clock, timings, heldOut);
-    profile.timing.clock = clock;
-    profile.timing.clockRequest = settings.clock;
-    profile.timing.rounds = passes;
-    profile.timing.repeatsPerRound = settings.repeats;
-    profile.timing.warmup = settings.warmup;
-    profile.timing.medianSpread = result.spread.median;
-    profile.timing.p90Spread = result.spread.p90;
-    profile.timing.splitHalfMedian = result.repeatability.median;
-    profile.timing.splitHalfP90 = result.repeatability.p90;
-    profile.timing.seconds = secondsSince(settings.start);
+    result.repeatability = timemodel::splitHalfRepeatability(timemodel::kPredictedStatistic, timings, heldOut);
+    timemodel::TimingSettings& timing = profile.timing;
+    timing.frameClock = renderer::frameClockName(renderer.frameClock());
+    timing.rounds = passes;
+    timing.repeatsPerRound = settings.repeats;
+    timing.warmup = settings.warmup;
+    timing.medianSpread = result.spread.median;
+    timing.p90Spread = result.spread.p90;
+    timing.splitHalfMedian = result.repeatability.median;
+    timing.splitHalfP90 = result.repeatability.p90;
+    timing.seconds = secondsSince(settings.start);
     return result;
 }
 

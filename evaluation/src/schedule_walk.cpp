@@ -109,9 +109,8 @@ void ScheduleWalk::measure(WalkFrame& row) {
                 row.baselineFitness = fitnessOf(mFrame, mReferenceFrame, mOptions.metrics);
             }
         }
-        row.measuredMs = mRenderer->timeRender(row.decision.levels, camera, mOptions.repeats, 1, mOptions.statistic);
-        if (mOptions.baseline)
-            row.baselineMeasuredMs = mRenderer->timeRender(mBaseline, camera, mOptions.repeats, 1, mOptions.statistic);
+        row.measuredMs = mRenderer->timeFrames(row.decision.levels, camera, mOptions.repeats, 1).median();
+        if (mOptions.baseline) row.baselineMeasuredMs = mRenderer->timeFrames(mBaseline, camera, mOptions.repeats, 1).median();
         if (mOptions.feedback) mScheduler.reportMeasuredMs(row.measuredMs);
     }
     row.feedbackScale = mScheduler.model().feedbackScale();
@@ -144,8 +143,7 @@ WalkFrame ScheduleWalk::replay(int frame, const RecordedFrame& recorded) {
 }
 
 MeasurementCeiling probeMeasurementCeiling(renderer::Renderer& renderer, const scenes::CameraPath& path,
-                                           const std::vector<WalkFrame>& frames, int measurements, int repeats,
-                                           renderer::Renderer::Statistic statistic) {
+                                           const std::vector<WalkFrame>& frames, int measurements, int repeats) {
     MeasurementCeiling result;
     if (frames.empty() || measurements <= 0) return result;
     std::vector<std::size_t> probed = {0};
@@ -156,7 +154,7 @@ MeasurementCeiling probeMeasurementCeiling(renderer::Renderer& renderer, const s
         const scenes::Camera& camera = path.frames[std::size_t(frames[r].frame)];
         std::vector<double> times;
         for (int k = 0; k < measurements; ++k) {
-            times.push_back(renderer.timeRender(frames[r].decision.levels, camera, repeats, 1, statistic));
+            times.push_back(renderer.timeFrames(frames[r].decision.levels, camera, repeats, 1).median());
         }
         CeilingProbe probe;
         probe.frame = frames[r].frame;

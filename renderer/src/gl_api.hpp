@@ -8,22 +8,27 @@
 
 #include <functional>
 
-#define LODOPT_GL_FUNCTIONS(X)                                                                              \
-    X(glActiveTexture) X(glAttachShader) X(glBindBuffer) X(glBindBufferBase) X(glBindFramebuffer)           \
-    X(glBindRenderbuffer) X(glBindSampler) X(glBindTexture) X(glBindVertexArray) X(glBlendFuncSeparate)     \
-    X(glBufferData) X(glBufferSubData) X(glCheckFramebufferStatus) X(glClear) X(glClearColor)               \
-    X(glClearDepth) X(glColorMask) X(glCompileShader) X(glCreateProgram) X(glCreateShader) X(glCullFace)    \
-    X(glDeleteBuffers) X(glDeleteFramebuffers) X(glDeleteProgram) X(glDeleteRenderbuffers)                  \
-    X(glDeleteSamplers) X(glDeleteShader) X(glDeleteTextures) X(glDeleteVertexArrays) X(glDepthFunc)        \
-    X(glDepthMask) X(glDisable) X(glDrawElements) X(glEnable) X(glEnableVertexAttribArray) X(glFinish)      \
-    X(glFramebufferRenderbuffer) X(glFrontFace) X(glGenBuffers) X(glGenFramebuffers) X(glGenRenderbuffers)  \
-    X(glGenSamplers) X(glGenTextures) X(glGenVertexArrays) X(glGenerateMipmap) X(glGetBufferSubData)        \
-    X(glGetError) X(glGetProgramInfoLog) X(glGetProgramiv) X(glGetShaderInfoLog) X(glGetShaderiv)           \
-    X(glGetString) X(glGetUniformLocation) X(glLinkProgram) X(glMemoryBarrier) X(glPixelStorei)             \
-    X(glReadPixels) X(glRenderbufferStorage) X(glSamplerParameteri) X(glScissor) X(glShaderSource)          \
-    X(glTexImage2D) X(glTexParameteri) X(glUniform1f) X(glUniform1i) X(glUniform1iv) X(glUniform1ui)        \
-    X(glUniform3fv) X(glUniform4fv) X(glUniformMatrix3fv) X(glUniformMatrix4fv) X(glUseProgram)             \
-    X(glVertexAttribPointer) X(glViewport)
+#define LODOPT_GL_FUNCTIONS(X)                                                                                         \
+    X(glActiveTexture)                                                                                                 \
+    X(glAttachShader) X(glBeginQuery) X(glBindBuffer) X(glBindBufferBase) X(glBindFramebuffer) X(                      \
+        glBindRenderbuffer) X(glBindSampler) X(glBindTexture) X(glBindVertexArray) X(glBlendFuncSeparate)              \
+        X(glBufferData) X(glBufferSubData) X(glCheckFramebufferStatus) X(glClear) X(glClearColor) X(glClearDepth) X(   \
+            glColorMask) X(glCompileShader) X(glCreateProgram) X(glCreateShader) X(glCullFace) X(glDeleteBuffers)      \
+            X(glDeleteFramebuffers) X(glDeleteQueries) X(glDeleteProgram) X(glDeleteRenderbuffers) X(glDeleteSamplers) \
+                X(glDeleteShader) X(glDeleteTextures) X(glDeleteVertexArrays) X(glDepthFunc) X(glDepthMask)            \
+                    X(glDisable) X(glDrawElements) X(glEnable) X(glEndQuery) X(glEnableVertexAttribArray) X(glFinish)  \
+                        X(glFramebufferRenderbuffer) X(glFrontFace) X(glGenBuffers) X(glGenFramebuffers)               \
+                            X(glGenRenderbuffers) X(glGenQueries) X(glGenSamplers) X(glGenTextures)                    \
+                                X(glGenVertexArrays) X(glGenerateMipmap) X(glGetBufferSubData) X(glGetError)           \
+                                    X(glGetProgramInfoLog) X(glGetProgramiv) X(glGetQueryiv) X(glGetQueryObjectui64v)  \
+                                        X(glGetShaderInfoLog) X(glGetShaderiv) X(glGetString) X(glGetUniformLocation)  \
+                                            X(glLinkProgram) X(glMemoryBarrier) X(glPixelStorei) X(glReadPixels)       \
+                                                X(glRenderbufferStorage) X(glSamplerParameteri) X(glScissor)           \
+                                                    X(glShaderSource) X(glTexImage2D) X(glTexParameteri)               \
+                                                        X(glUniform1f) X(glUniform1i) X(glUniform1iv) X(glUniform1ui)  \
+                                                            X(glUniform3fv) X(glUniform4fv) X(glUniformMatrix3fv)      \
+                                                                X(glUniformMatrix4fv) X(glUseProgram)                  \
+                                                                    X(glVertexAttribPointer) X(glViewport)
 
 namespace lodopt::renderer::gl {
 
@@ -117,3 +122,9 @@ const Api*& currentApi();
 #define glUseProgram LODOPT_GL_CALL(glUseProgram)
 #define glVertexAttribPointer LODOPT_GL_CALL(glVertexAttribPointer)
 #define glViewport LODOPT_GL_CALL(glViewport)
+#define glBeginQuery LODOPT_GL_CALL(glBeginQuery)
+#define glDeleteQueries LODOPT_GL_CALL(glDeleteQueries)
+#define glEndQuery LODOPT_GL_CALL(glEndQuery)
+#define glGenQueries LODOPT_GL_CALL(glGenQueries)
+#define glGetQueryiv LODOPT_GL_CALL(glGetQueryiv)
+#define glGetQueryObjectui64v LODOPT_GL_CALL(glGetQueryObjectui64v)

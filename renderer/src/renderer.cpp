@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
 #include <tuple>
@@ -15,6 +16,12 @@
 
 namespace lodopt::renderer {
 namespace {
+
+double processCpuMs() {
+    timespec now{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
+}
 
 // The pixels (top-left origin) where `object` at `level` can put fragments: the rectangle of
 // its vertices' projections, grown by 2 pixels (rasterization rules, the vertex shader's own
@@ -123,6 +130,55 @@ struct Renderer::Impl {
     std::vector<std::uint8_t> layerColor;  // renderLayer's bounded readback
     std::vector<float> layerDepth;
     std::string vendor, rendererName, version;
+    GLuint timerQuery = 0;  // GL_TIME_ELAPSED; 0 when the driver's timer has no counter bits
+    FrameClock frameClock = FrameClock::Wall;
+
+    // A renderer's first timed frames come after this, once: one frame read back, then draws
+    // until kWarmUpDraws and kWarmUpSeconds have both passed. On llvmpipe a context's draws are
+    // slower until its first read-back (about twice: harbor 256x192, 11-17 ms before, 6 ms
+    // after, AMD EPYC), and its first dozen draws after that alternate between two speeds; a
+    // command that times one frame right after start (render --time) would time that instead of
+    // what a running application sees (docs/renderer.md "Timing").
+    bool timingWarmedUp = false;
+    static constexpr int kWarmUpDraws = 12;
+    static constexpr double kWarmUpSeconds = 0.25;
+    void warmUpForTiming(const scenes::Combination& combination, const scenes::Camera& camera) {
+        Frame scratch;
+        draw(combination, camera);
+        readBack(scratch);
+        const auto start = std::chrono::steady_clock::now();
+        for (int drawn = 0; drawn < kWarmUpDraws ||
+                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
+                                kWarmUpSeconds;
+             ++drawn) {
+            draw(combination, camera);
+            glFinish();
+        }
+        timingWarmedUp = true;
+    }
+
+    // Resolves settings.frameClock for this context (renderer.hpp FrameClock).
+    void setUpTiming() {
+        GLint bits = 0;
+        glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
+        if (glGetError() != GL_NO_ERROR) bits = 0;
+        if (bits > 0) glGenQueries(1, &timerQuery);
+        switch (settings.frameClock) {
+        case FrameClock::Wall:
+            frameClock = FrameClock::Wall;
+            break;
+        case FrameClock::GpuTimer:
+            if (!timerQuery) {
+                throw RenderError("frame clock gpu: " + rendererName +
+                                  " has no GL_TIME_ELAPSED timer (0 counter bits); use --timer wall");
+            }
+            frameClock = FrameClock::GpuTimer;
+            break;
+        case FrameClock::Auto:
+            frameClock = timerQuery && !isSoftwareRasterizer(rendererName) ? FrameClock::GpuTimer : FrameClock::Wall;
+            break;
+        }
+    }
 
     Impl(const scenes::Scene& s, RenderSettings st) : scene(s), settings(st) {}
 
@@ -397,6 +453,7 @@ Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings, std::uni
     mImpl->vendor = glString(GL_VENDOR);
     mImpl->rendererName = glString(GL_RENDERER);
     mImpl->version = glString(GL_VERSION);
+    mImpl->setUpTiming();
     mImpl->createProgram();
     mImpl->createFramebuffer();
     mImpl->uploadTextures();
@@ -421,6 +478,7 @@ Renderer::~Renderer() {
     glDeleteRenderbuffers(1, &mImpl->depthBuffer);
     glDeleteFramebuffers(1, &mImpl->framebuffer);
     glDeleteProgram(mImpl->program);
+    if (mImpl->timerQuery) glDeleteQueries(1, &mImpl->timerQuery);
 }
 
 const RenderSettings& Renderer::settings() const { return mImpl->settings; }
@@ -447,25 +505,43 @@ void Renderer::drawAndFinish(const scenes::Combination& combination, const scene
     glFinish();
 }
 
-double Renderer::timeRender(const scenes::Combination& combination, const scenes::Camera& camera, int repeats,
-                            int warmup, Statistic statistic) {
+FrameTimes Renderer::timeFrames(const scenes::Combination& combination, const scenes::Camera& camera, int repeats,
+                               int warmup) {
+    if (repeats < 1) throw RenderError("timeFrames: repeats must be >= 1, got " + std::to_string(repeats));
     scenes::validateCombination(mImpl->scene, combination);
-    repeats = std::max(repeats, 1);
-    for (int i = 0; i < warmup; ++i) drawAndFinish(combination, camera);
-    std::vector<double> samples;
-    samples.reserve(repeats);
-    for (int i = 0; i < repeats; ++i) {
-        auto start = std::chrono::steady_clock::now();
+    mImpl->activate();
+    if (!mImpl->timingWarmedUp) mImpl->warmUpForTiming(combination, camera);
+    for (int i = 0; i < warmup; ++i) {
         mImpl->draw(combination, camera);
         glFinish();
-        auto stop = std::chrono::steady_clock::now();
-        samples.push_back(std::chrono::duration<double, std::milli>(stop - start).count());
     }
-    std::sort(samples.begin(), samples.end());
-    if (statistic == Statistic::Min) return samples.front();
-    const std::size_t mid = samples.size() / 2;
-    return samples.size() % 2 ? samples[mid] : 0.5 * (samples[mid - 1] + samples[mid]);
+    FrameTimes times;
+    times.clock = mImpl->frameClock;
+    times.wallMs.reserve(std::size_t(repeats));
+    times.cpuMs.reserve(std::size_t(repeats));
+    const bool query = mImpl->timerQuery != 0;
+    if (query) times.gpuMs.reserve(std::size_t(repeats));
+    for (int i = 0; i < repeats; ++i) {
+        const double cpuStart = processCpuMs();
+        const auto wallStart = std::chrono::steady_clock::now();
+        if (query) glBeginQuery(GL_TIME_ELAPSED, mImpl->timerQuery);
+        mImpl->draw(combination, camera);
+        if (query) glEndQuery(GL_TIME_ELAPSED);
+        glFinish();
+        const auto wallStop = std::chrono::steady_clock::now();
+        times.cpuMs.push_back(processCpuMs() - cpuStart);
+        times.wallMs.push_back(std::chrono::duration<double, std::milli>(wallStop - wallStart).count());
+        if (query) {  // after glFinish the result is ready: reading it does not stall the next draw
+            GLuint64 nanoseconds = 0;
+            glGetQueryObjectui64v(mImpl->timerQuery, GL_QUERY_RESULT, &nanoseconds);
+            times.gpuMs.push_back(double(nanoseconds) * 1e-6);
+        }
+    }
+    return times;
 }
+
+FrameClock Renderer::frameClock() const { return mImpl->frameClock; }
+bool Renderer::hasTimerQueries() const { return mImpl->timerQuery != 0; }
 
 Layer Renderer::renderLayer(int object, int level, const scenes::Camera& camera) {
     const scenes::Scene& scene = mImpl->scene;

@@ -222,10 +222,10 @@ TEST_F(OptimizeCli, ResultRecordsTheFillProbability) {
 TEST_F(OptimizeCli, DefaultOptimizerNeverLosesToScreensize) {
     for (const char* view : {"overview", "ship_close", "aircraft_chase", "far"}) {
         SCOPED_TRACE(view);
-        // At 128x128 the shipped profile predicts 0.59-1.23 ms all-coarsest, 2.2-4.2 ms all-finest
+        // At 128x128 the shipped profile predicts 0.85-1.55 ms all-coarsest, 2.7-4.9 ms all-finest
         // (lodopt estimate --scene harbor --size 128x128 --view V [--levels 5,4,4]).
         const std::string common = std::string(" --scene harbor --size 128x128 --quiet --max-iterations 2 --view ") +
-                                   view + " --budget-ms 1.5";
+                                   view + " --budget-ms 1.8";
         ASSERT_EQ(runLodopt("optimize" + common + " --out " + (dir / "seeded").string()).exitCode, 0);
         ASSERT_EQ(runLodopt("optimize" + common + " --algo screensize --out " + (dir / "engine").string()).exitCode, 0);
         ASSERT_EQ(runLodopt("optimize" + common + " --seed-from none --out " + (dir / "unseeded").string()).exitCode,
@@ -236,7 +236,7 @@ TEST_F(OptimizeCli, DefaultOptimizerNeverLosesToScreensize) {
         EXPECT_EQ(seeded["seeded_from"], nlohmann::json::array({"screensize", "mckp"}));
         EXPECT_EQ(unseeded["seeded_from"], nlohmann::json::array());
         EXPECT_GE(seeded["search_fitness"].get<double>(), engine["search_fitness"].get<double>());
-        EXPECT_LE(seeded["predicted_ms"].get<double>(), 1.5);
+        EXPECT_LE(seeded["predicted_ms"].get<double>(), 1.8);
         EXPECT_LT(engine["search_fitness"].get<double>(), 1.0) << "the budget should force coarser levels";
     }
     EXPECT_EQ(runLodopt("optimize --budget-ms 4 --seed-from magic --out " + (dir / "x").string()).exitCode, 2);

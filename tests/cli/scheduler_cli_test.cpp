@@ -318,7 +318,7 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
     EXPECT_LE(summary["fitness"]["max"].get<double>(), 1.0);
     EXPECT_TRUE(summary.contains("measured_vs_budget"));
     EXPECT_TRUE(summary.contains("baseline_vs_budget"));
-    EXPECT_EQ(summary["frame_time"]["statistic"], "min");  // the default
+    EXPECT_EQ(summary["frame_time"]["statistic"], "median");  // what every profile predicts
     EXPECT_EQ(summary["frame_time"]["draws"], 1);
     // The measurement ceiling: the first, middle and last frames timed 20 times each (default).
     const nlohmann::json& ceiling = summary["measurement_ceiling"];
@@ -340,6 +340,16 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
         sum += probe["ceiling"].get<double>();
     }
     EXPECT_DOUBLE_EQ(ceiling["ceiling"].get<double>(), sum / 3.0);
+    // Goal 1 over the binding frames, as a share of that ceiling.
+    const nlohmann::json& goal = summary["goal_1"];
+    EXPECT_EQ(goal["binding_frames"], summary["measured_vs_budget"]["binding"]["frames"]);
+    EXPECT_DOUBLE_EQ(goal["ceiling"].get<double>(), ceiling["ceiling"].get<double>());
+    if (goal["binding_frames"].get<int>() > 0) {
+        EXPECT_DOUBLE_EQ(goal["of_ceiling"].get<double>(),
+                         goal["within_10_percent"].get<double>() / ceiling["ceiling"].get<double>());
+    } else {
+        EXPECT_TRUE(goal["of_ceiling"].is_null());
+    }
     const std::string csv = readFile(std::filesystem::path(out) / "frames.csv");
     std::istringstream lines(csv);
     std::string header;
@@ -389,20 +399,25 @@ TEST_F(SchedulerCli, BadInputExitsWithTwo) {
               2);
 }
 
-TEST_F(SchedulerCli, FrameTimeCanBeTheMedianOfTheDraws) {
+TEST_F(SchedulerCli, AFramesTimeIsTheMedianOfItsDrawsAsTheProfilePredicts) {
     const std::string out = (sDir / "schedule_median").string();
     const CommandResult result =
         run("schedule --scene harbor --path " + sPath + " --budget-ms " + std::to_string(sBudget) +
             " --size 128x128 --profile " + sProfile +
-            " --render --no-fitness --repeats 3 --frame-time median --frames 3 --noise-probe 0 --out " + out +
-            " --json --quiet");
+            " --render --no-fitness --repeats 3 --frames 3 --noise-probe 0 --out " + out + " --json --quiet");
     ASSERT_EQ(result.exitCode, 0) << result.output;
     const nlohmann::json summary = parseOrFail(result);
     EXPECT_EQ(summary["frame_time"]["statistic"], "median");
+    EXPECT_EQ(summary["frame_time"]["clock"], "wall");  // llvmpipe
     EXPECT_EQ(summary["frame_time"]["draws"], 3);
     EXPECT_EQ(summary["frames"], 3);
     EXPECT_GT(summary["measured_ms"]["median"].get<double>(), 0.0);
     EXPECT_FALSE(summary.contains("measurement_ceiling"));  // --noise-probe 0
+    EXPECT_TRUE(summary["goal_1"]["of_ceiling"].is_null());  // nothing to divide by
+    // The least of the draws is no longer a choice: one statistic, the profile's.
+    EXPECT_EQ(run("schedule --scene harbor --path " + sPath + " --budget-ms 3 --render --frame-time min --out " + out)
+                  .exitCode,
+              2);
 }
 
 // ---- schedule: interrupts and --resume ----------------------------------------------------

@@ -10,6 +10,7 @@
 
 #include "run_lodopt.hpp"
 #include "timemodel/profile.hpp"
+#include "timemodel/timing.hpp"
 
 namespace {
 
@@ -74,70 +75,76 @@ TEST_F(TimeModelCli, CalibrateFitsEveryModelAndWritesAProfile) {
     EXPECT_EQ(profile.samples.size(), 24u);
     EXPECT_NE(profile.glRenderer.find("llvmpipe"), std::string::npos) << profile.glRenderer;
     EXPECT_FALSE(profile.machine.cpuModel.empty());
-    // The default, --clock auto: the wall clock whose split-half median on the fitting samples
-    // was least.
-    EXPECT_EQ(report["clock_request"], "auto");
-    EXPECT_EQ(profile.timing.clockRequest, "auto");
-    const std::string clock = report["clock"];
-    EXPECT_EQ(profile.timing.clock, clock);
-    const nlohmann::json& judged = report["clock_choice"]["split_half"];
-    ASSERT_EQ(judged.size(), 3u) << report["clock_choice"];
-    ASSERT_TRUE(judged.contains(clock)) << clock;
-    EXPECT_TRUE(report["clock_choice"]["measured"].get<bool>());
-    for (const auto& [other, stats] : judged.items()) {
-        EXPECT_GT(stats["count"].get<int>(), 0) << other;
-        EXPECT_LE(judged[clock]["median"].get<double>(), stats["median"].get<double>()) << other;
+    // Every profile predicts the median of a frame's draws; by default (--learn-from auto) the
+    // models learn from the statistic that predicted it best on the fitting viewpoints.
+    EXPECT_EQ(report["predicts"], "median");
+    EXPECT_EQ(report["frame_clock"], "wall");  // llvmpipe: its timer misses the rasterization
+    EXPECT_EQ(report["learn_request"], "auto");
+    EXPECT_EQ(profile.timing.learnRequest, "auto");
+    const std::string learned = report["learned_from"];
+    EXPECT_EQ(profile.timing.learnedFrom, learned);
+    EXPECT_DOUBLE_EQ(profile.timing.learnedScale, report["learned_scale"].get<double>());
+    const nlohmann::json& judged = report["learn_choice"]["candidates"];
+    ASSERT_EQ(judged.size(), 3u) << report["learn_choice"];
+    ASSERT_TRUE(judged.contains(learned)) << learned;
+    EXPECT_TRUE(report["learn_choice"]["measured"].get<bool>());
+    for (const auto& [other, candidate] : judged.items()) {
+        EXPECT_GT(candidate["errors"]["count"].get<int>(), 0) << other;
+        EXPECT_LE(judged[learned]["errors"]["mean"].get<double>(), candidate["errors"]["mean"].get<double>()) << other;
     }
     for (const auto& s : profile.samples) {
         EXPECT_GT(s.sample.measuredMs, 0.0);
-        EXPECT_EQ(s.sample.measuredMs, lodopt::timemodel::timeOnClock(s, clock));
+        EXPECT_EQ(s.sample.measuredMs, s.medianMs);
         // The median of the passes' least times lies between their least and their greatest.
-        EXPECT_GE(s.wallMinMedianMs, s.wallMinMs);
+        EXPECT_GE(s.leastMedianMs, s.leastMs);
         EXPECT_GT(s.wallMedianMs, 0.0);
+        EXPECT_GT(s.gpuMedianMs, 0.0);  // Mesa's timer, recorded beside the wall clock
     }
-    // The same draws refitted on every other clock.
-    for (const std::string& other : lodopt::timemodel::timingClockNames()) {
-        if (other == clock) {
-            EXPECT_FALSE(report["other_clocks"].contains(other));
+    // The same draws refitted learning from every other statistic.
+    for (const std::string& other : lodopt::timemodel::timingStatisticNames()) {
+        if (other == learned) {
+            EXPECT_FALSE(report["other_statistics"].contains(other));
             continue;
         }
-        ASSERT_TRUE(report["other_clocks"].contains(other)) << other;
-        EXPECT_EQ(report["other_clocks"][other]["models"].size(), 3u) << other;
-        EXPECT_GE(report["other_clocks"][other]["split_half_p90"].get<double>(),
-                  report["other_clocks"][other]["split_half_median"].get<double>())
+        ASSERT_TRUE(report["other_statistics"].contains(other)) << other;
+        EXPECT_EQ(report["other_statistics"][other]["models"].size(), 3u) << other;
+        EXPECT_GT(report["other_statistics"][other]["scale"].get<double>(), 0.0) << other;
+        EXPECT_GE(report["other_statistics"][other]["split_half_p90"].get<double>(),
+                  report["other_statistics"][other]["split_half_median"].get<double>())
             << other;
     }
-    // A wall clock not fitted (nanosecond steps: its halves never agree exactly; the CPU clock's
-    // coarser steps may).
-    const std::string otherWall = clock == "wall-min" ? "wall-median" : "wall-min";
-    EXPECT_GT(report["other_clocks"][otherWall]["split_half_median"].get<double>(), 0.0);
     // Two passes: each held-out sample timed twice, the two compared (repeatability).
     EXPECT_EQ(profile.timing.rounds, 2);
     const double halfMedian = report["split_half_median"].get<double>();
-    EXPECT_GT(halfMedian, 0.0);  // two least-of-one draws on a nanosecond clock are never equal
+    EXPECT_GT(halfMedian, 0.0);  // two draws on a nanosecond clock are never equal
     EXPECT_GE(report["split_half_p90"].get<double>(), halfMedian);
     EXPECT_DOUBLE_EQ(profile.timing.splitHalfMedian, halfMedian);
     EXPECT_DOUBLE_EQ(profile.timing.splitHalfP90, report["split_half_p90"].get<double>());
 }
 
-TEST_F(TimeModelCli, CalibrateFitsTheClockItIsGiven) {
-    const std::string out = (sDir / "median_of_least.json").string();
+TEST_F(TimeModelCli, CalibrateLearnsFromTheStatisticItIsGivenAndStillPredictsTheMedian) {
+    const std::string out = (sDir / "learned_from_least.json").string();
     const CommandResult result =
         run("calibrate --scene harbor --samples 16 --jitter 1 --rounds 3 --max-rounds 3 --repeats 2 --warmup 0 "
-            "--size 64x48 --seed 5 --clock wall-min --out " +
+            "--size 64x48 --seed 5 --learn-from least --out " +
             out + " --json");
     ASSERT_EQ(result.exitCode, 0) << result.output;
     const nlohmann::json report = nlohmann::json::parse(result.output);
-    EXPECT_EQ(report["clock"], "wall-min");
-    EXPECT_EQ(report["clock_request"], "wall-min");
-    EXPECT_TRUE(report["other_clocks"].contains("wall-min-median"));
+    EXPECT_EQ(report["learned_from"], "least");
+    EXPECT_EQ(report["learn_request"], "least");
+    EXPECT_EQ(report["predicts"], "median");
+    EXPECT_GE(report["learned_scale"].get<double>(), 1.0);  // a least is never above its median
+    EXPECT_TRUE(report["other_statistics"].contains("least-median"));
+    EXPECT_TRUE(report["other_statistics"].contains("median"));
     const lodopt::timemodel::DeviceProfile profile = lodopt::timemodel::loadProfile(out);
-    EXPECT_EQ(profile.timing.clock, "wall-min");
+    EXPECT_EQ(profile.timing.learnedFrom, "least");
     EXPECT_EQ(profile.timing.rounds, 3);
     for (const auto& s : profile.samples) {
-        EXPECT_EQ(s.sample.measuredMs, s.wallMinMs);
-        EXPECT_GE(s.wallMinMedianMs, s.wallMinMs);
+        EXPECT_EQ(s.sample.measuredMs, s.medianMs);
+        EXPECT_GE(s.leastMedianMs, s.leastMs);
     }
+    // An older name of a statistic is not an option any more.
+    EXPECT_EQ(run("calibrate --scene harbor --samples 16 --learn-from wall-min --out " + out).exitCode, 2);
 }
 
 TEST_F(TimeModelCli, CalibrateMakesAtLeastRoundsPassesAndMoreWithinTheBudget) {

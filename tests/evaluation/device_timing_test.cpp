@@ -19,20 +19,6 @@ renderer::RenderSettings smallSettings() {
 
 }  // namespace
 
-TEST(DeviceTiming, DrawTimesArePositiveAndOrdered) {
-    const scenes::Scene scene = scenes::makeHarborScene();
-    renderer::Renderer renderer(scene, smallSettings());
-    const evaluation::DrawTimes times =
-        evaluation::timeDraws(renderer, scenes::referenceCombination(scene), scene.views[0], 5, 1);
-    EXPECT_GT(times.wallMin, 0.0);
-    EXPECT_LE(times.wallMin, times.wallMedian);
-    EXPECT_GT(times.cpuMedian, 0.0);
-    EXPECT_EQ(evaluation::batchTime(times, "wall-min"), times.wallMin);
-    EXPECT_EQ(evaluation::batchTime(times, "wall-min-median"), times.wallMin);
-    EXPECT_EQ(evaluation::batchTime(times, "wall-median"), times.wallMedian);
-    EXPECT_EQ(evaluation::batchTime(times, "cpu"), times.cpuMedian);
-}
-
 TEST(DeviceTiming, CalibrationTimesEverySampleInEveryPassAndFitsTheProfile) {
     const scenes::Scene scene = scenes::makeHarborScene();
     renderer::Renderer renderer(scene, smallSettings());
@@ -44,7 +30,7 @@ TEST(DeviceTiming, CalibrationTimesEverySampleInEveryPassAndFitsTheProfile) {
     settings.rounds = 2;
     settings.maxRounds = 2;
     settings.repeats = 1;
-    settings.clock = "wall-median";
+    settings.learnFrom = "least";
     int calls = 0;
     int lastPass = -1;
     const evaluation::CalibrationResult run = evaluation::calibrateDevice(
@@ -62,19 +48,45 @@ TEST(DeviceTiming, CalibrationTimesEverySampleInEveryPassAndFitsTheProfile) {
     EXPECT_EQ(profile.samples.size(), plan.samples.size());
     EXPECT_EQ(run.fitSamples + run.heldOutSamples, plan.samples.size());
     EXPECT_GT(run.heldOutSamples, 0u);
-    EXPECT_EQ(profile.timing.clock, "wall-median");  // asked for, whatever auto would have chosen
-    EXPECT_EQ(profile.timing.clockRequest, "wall-median");
+    EXPECT_EQ(profile.timing.learnedFrom, "least");  // asked for, whatever auto would have chosen
+    EXPECT_EQ(profile.timing.learnRequest, "least");
+    EXPECT_EQ(profile.timing.predicts, "median");
+    EXPECT_EQ(profile.timing.frameClock, "wall");
+    // The least of a frame's draws is never above their median: the scale lifts it to the median.
+    EXPECT_GE(profile.timing.learnedScale, 1.0);
     EXPECT_EQ(profile.timing.rounds, 2);
     EXPECT_EQ(profile.width, 64);
     EXPECT_EQ(profile.shading, renderer::shadingName(renderer::kDefaultShading));
     EXPECT_EQ(profile.scene, scene.name);
     EXPECT_EQ(profile.seed, 5u);
     EXPECT_EQ(profile.viewpoints, int(plan.viewpoints.size()));
-    EXPECT_EQ(run.otherClocks.size(), timemodel::timingClockNames().size() - 1);
+    EXPECT_EQ(run.otherStatistics.size(), timemodel::timingStatisticNames().size() - 1);
     for (const timemodel::ProfileSample& sample : profile.samples) {
         EXPECT_GT(sample.sample.measuredMs, 0.0);
-        EXPECT_EQ(sample.sample.measuredMs, sample.wallMedianMs);
-        EXPECT_LE(sample.wallMinMs, sample.wallMedianMs);
+        EXPECT_EQ(sample.sample.measuredMs, sample.medianMs);  // what every profile predicts
+        EXPECT_EQ(sample.medianMs, sample.wallMedianMs);       // on the wall clock here
+        EXPECT_LE(sample.leastMs, sample.leastMedianMs);
+        EXPECT_LE(sample.leastMedianMs, sample.medianMs);
+        EXPECT_GE(sample.gpuMedianMs, 0.0);
+    }
+    // The models predict the median: the linear model's coefficients are the least's times the scale.
+    const timemodel::ModelResult* linear = nullptr;
+    for (const timemodel::ModelResult& m : profile.models) linear = m.name == "linear" ? &m : linear;
+    ASSERT_NE(linear, nullptr);
+    ASSERT_TRUE(linear->fitted);
+    std::vector<timemodel::Sample> leastSamples;
+    for (const timemodel::ProfileSample& s : profile.samples) {
+        if (s.heldOut) continue;
+        leastSamples.push_back(s.sample);
+        leastSamples.back().measuredMs = s.leastMs;
+    }
+    const std::unique_ptr<timemodel::TimeModel> unscaled = timemodel::makeTimeModel("linear");
+    unscaled->fit(leastSamples);
+    ASSERT_EQ(unscaled->coefficients().size(), linear->coefficients.size());
+    for (std::size_t c = 0; c < linear->coefficients.size(); ++c) {
+        EXPECT_NEAR(linear->coefficients[c], profile.timing.learnedScale * unscaled->coefficients()[c],
+                    1e-6 * (1e-9 + std::abs(linear->coefficients[c])))
+            << linear->coefficientNames[c];
     }
     EXPECT_TRUE(std::any_of(profile.models.begin(), profile.models.end(),
                             [](const timemodel::ModelResult& m) { return m.fitted; }));

@@ -125,7 +125,7 @@ TEST(ScheduleWalk, RenderedFramesAreTimedScoredAndFedBack) {
     EXPECT_EQ(resumed.walk(20).decision.levels, frames[2].decision.levels);
 
     const evaluation::MeasurementCeiling ceiling = evaluation::probeMeasurementCeiling(
-        renderer, path, frames, 4, 1, renderer::Renderer::Statistic::Min);
+        renderer, path, frames, 4, 1);
     ASSERT_EQ(ceiling.probes.size(), 3u);
     EXPECT_EQ(ceiling.probes[1].frame, 10);
     EXPECT_GT(ceiling.ceiling, 0.0);

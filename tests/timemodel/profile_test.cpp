@@ -46,14 +46,25 @@ timemodel::DeviceProfile sampleProfile() {
     profile.seed = 17;
     profile.viewpoints = 4;
     profile.heldOutViewpoints = 1;
-    profile.timing = {"cpu", 3, 2, 1, 0.05, 0.1, 12.5, 0.0, 0.0, "cpu"};
+    profile.timing.learnedFrom = "cpu";
+    profile.timing.learnedScale = 0.5;
+    profile.timing.learnRequest = "cpu";
+    profile.timing.rounds = 3;
+    profile.timing.repeatsPerRound = 2;
+    profile.timing.warmup = 1;
+    profile.timing.medianSpread = 0.05;
+    profile.timing.p90Spread = 0.1;
+    profile.timing.seconds = 12.5;
     profile.models = timemodel::fitAllModels(fit, heldOut);
     // The first model with a rotated measurement, the others without (profiles from before it).
     profile.models[0].rotatedErrors = {12, 0.05, 0.04, 0.11, 0.2};
+    // Fold (0 = held out), least, least-median, median, cpu (not recorded), wall median, GPU median.
     for (const auto& s : fit)
-        profile.samples.push_back({s, false, s.measuredMs, 1.1 * s.measuredMs, 0.0, 1.05 * s.measuredMs});
+        profile.samples.push_back({s, false, 1 + s.viewpoint, 0.9 * s.measuredMs, 0.95 * s.measuredMs, s.measuredMs,
+                                   0.0, s.measuredMs, 0.5 * s.measuredMs});
     for (const auto& s : heldOut)
-        profile.samples.push_back({s, true, s.measuredMs, 1.1 * s.measuredMs, 0.0, 1.05 * s.measuredMs});
+        profile.samples.push_back({s, true, 0, 0.9 * s.measuredMs, 0.95 * s.measuredMs, s.measuredMs, 0.0,
+                                   s.measuredMs, 0.5 * s.measuredMs});
     return profile;
 }
 
@@ -82,7 +93,11 @@ TEST(Profile, RoundTripsThroughJsonAndAFile) {
     EXPECT_EQ(loaded.height, 384);
     EXPECT_EQ(loaded.seed, 17u);
     EXPECT_EQ(loaded.timing.rounds, 3);
-    EXPECT_EQ(loaded.timing.clock, "cpu");
+    EXPECT_EQ(loaded.timing.learnedFrom, "cpu");
+    EXPECT_EQ(loaded.timing.learnedScale, 0.5);
+    EXPECT_EQ(loaded.timing.learnRequest, "cpu");
+    EXPECT_EQ(loaded.timing.predicts, "median");
+    EXPECT_EQ(loaded.timing.frameClock, "wall");
     ASSERT_EQ(loaded.models.size(), profile.models.size());
     for (std::size_t m = 0; m < loaded.models.size(); ++m) {
         EXPECT_EQ(loaded.models[m].name, profile.models[m].name);
@@ -100,15 +115,18 @@ TEST(Profile, RoundTripsThroughJsonAndAFile) {
     ASSERT_EQ(loaded.samples.size(), profile.samples.size());
     EXPECT_DOUBLE_EQ(loaded.samples[5].sample.measuredMs, profile.samples[5].sample.measuredMs);
     EXPECT_DOUBLE_EQ(loaded.samples[5].wallMedianMs, profile.samples[5].wallMedianMs);
+    EXPECT_DOUBLE_EQ(loaded.samples[5].gpuMedianMs, profile.samples[5].gpuMedianMs);
+    EXPECT_EQ(loaded.samples[5].fold, profile.samples[5].fold);
+    EXPECT_EQ(timemodel::profileFolds(loaded)[5], profile.samples[5].fold);
     EXPECT_EQ(loaded.samples[5].cpuMs, 0.0);  // not recorded
-    EXPECT_DOUBLE_EQ(loaded.samples[5].wallMinMedianMs, profile.samples[5].wallMinMedianMs);
-    for (const std::string& clock : timemodel::timingClockNames()) {
-        EXPECT_EQ(timemodel::timeOnClock(loaded.samples[5], clock), timemodel::timeOnClock(profile.samples[5], clock))
-            << clock;
+    for (const std::string& statistic : timemodel::timingStatisticNames()) {
+        EXPECT_EQ(timemodel::timeOfStatistic(loaded.samples[5], statistic),
+                  timemodel::timeOfStatistic(profile.samples[5], statistic))
+            << statistic;
     }
-    EXPECT_DOUBLE_EQ(timemodel::timeOnClock(loaded.samples[5], "wall-min-median"), loaded.samples[5].wallMinMedianMs);
-    EXPECT_DOUBLE_EQ(timemodel::timeOnClock(loaded.samples[5], "wall-median"), loaded.samples[5].wallMedianMs);
-    EXPECT_EQ(timemodel::timeOnClock(loaded.samples[5], "no-such-clock"), 0.0);
+    EXPECT_DOUBLE_EQ(timemodel::timeOfStatistic(loaded.samples[5], "least-median"), loaded.samples[5].leastMedianMs);
+    EXPECT_DOUBLE_EQ(timemodel::timeOfStatistic(loaded.samples[5], "least"), 0.9 * loaded.samples[5].medianMs);
+    EXPECT_EQ(timemodel::timeOfStatistic(loaded.samples[5], "wall-min"), 0.0);  // older names are the file's only
     // The model built from the file predicts what the fitted one did.
     const auto model = timemodel::modelFromProfile(loaded);
     EXPECT_EQ(model->name(), "linear");
@@ -149,6 +167,14 @@ TEST(Profile, WarnsWhenRendererSizeOrMachineDiffer) {
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("LP_NUM_THREADS 1, this process has unset"), std::string::npos) << warnings[0];
     EXPECT_TRUE(timemodel::profileWarnings(oneThread, profile.glRenderer, 512, 384, oneThread.machine, profile.shading).empty());
+    // Timed on a GPU's timer, used where frames are timed on the wall clock.
+    timemodel::DeviceProfile gpu = profile;
+    gpu.timing.frameClock = "gpu";
+    const std::vector<std::string> clock =
+        timemodel::profileWarnings(gpu, profile.glRenderer, 512, 384, profile.machine, profile.shading, "wall");
+    ASSERT_EQ(clock.size(), 1u);
+    EXPECT_NE(clock[0].find("gpu clock, this renderer on the wall clock"), std::string::npos) << clock[0];
+    EXPECT_TRUE(timemodel::profileWarnings(gpu, profile.glRenderer, 512, 384, profile.machine, profile.shading, "gpu").empty());
 }
 
 TEST(Profile, RecordsTheRasterizerThreadsAndReadsOlderFilesWithout) {
@@ -169,18 +195,58 @@ TEST(Profile, RecordsTheRasterizerThreadsAndReadsOlderFilesWithout) {
     EXPECT_NE(expectProfileError(wrongType).find("machine.lp_num_threads"), std::string::npos);
 }
 
-TEST(Profile, RecordsTheClockAskedForAndReadsOlderFilesWithout) {
-    timemodel::DeviceProfile profile = sampleProfile();
-    profile.timing.clock = "wall-min";
-    profile.timing.clockRequest = timemodel::kAutoClock;
-    nlohmann::json document = nlohmann::json::parse(timemodel::profileToJson(profile));
-    EXPECT_EQ(document["calibration"]["timing"]["clock_request"], "auto");
-    const timemodel::DeviceProfile loaded = timemodel::profileFromJson(document.dump(), "p.json");
-    EXPECT_EQ(loaded.timing.clock, "wall-min");
-    EXPECT_EQ(loaded.timing.clockRequest, "auto");
-    document["calibration"]["timing"].erase("clock_request");  // written before 2026-12-05
-    EXPECT_EQ(timemodel::profileFromJson(document.dump(), "p.json").timing.clockRequest, "");
-    document["calibration"]["timing"]["clock_request"] = 3;
+TEST(Profile, ReadsFilesWrittenBeforeTheMedianWasThePredictedQuantity) {
+    nlohmann::json document = nlohmann::json::parse(timemodel::profileToJson(sampleProfile()));
+    EXPECT_EQ(document["calibration"]["timing"]["predicts"], "median");
+    EXPECT_EQ(document["calibration"]["timing"]["learned_scale"], 0.5);
+    // What such a file held: one "clock", fitted and predicted, samples on the wall clock's names.
+    nlohmann::json& timing = document["calibration"]["timing"];
+    for (const char* key : {"predicts", "frame_clock", "learned_from", "learned_scale", "learn_request"}) timing.erase(key);
+    timing["clock"] = "wall-min";
+    timing["clock_request"] = "auto";
+    for (nlohmann::json& sample : document["samples"]) {
+        sample["wall_min_ms"] = sample["least_ms"];
+        sample["wall_min_median_ms"] = sample["least_median_ms"];
+        for (const char* key : {"least_ms", "least_median_ms", "median_ms", "gpu_median_ms", "fold"}) sample.erase(key);
+    }
+    const timemodel::DeviceProfile older = timemodel::profileFromJson(document.dump(), "old.json");
+    EXPECT_EQ(older.timing.learnedFrom, "least");
+    EXPECT_EQ(older.timing.predicts, "least");
+    EXPECT_EQ(older.timing.learnedScale, 1.0);
+    EXPECT_EQ(older.timing.frameClock, "wall");
+    EXPECT_EQ(older.timing.learnRequest, "auto");
+    const timemodel::DeviceProfile current = sampleProfile();
+    EXPECT_DOUBLE_EQ(older.samples[3].leastMs, current.samples[3].leastMs);
+    EXPECT_DOUBLE_EQ(older.samples[3].medianMs, current.samples[3].wallMedianMs);
+    EXPECT_EQ(older.samples[3].gpuMedianMs, 0.0);
+    // It predicts the least, not the median every command measures: a warning says so.
+    const std::vector<std::string> warnings =
+        timemodel::profileWarnings(older, older.glRenderer, 512, 384, older.machine, older.shading);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("predicts the least"), std::string::npos) << warnings[0];
+    // Held-out samples in fold 0, one fold per fitting viewpoint (viewpoints 0, 1, 2 here).
+    const std::vector<int> folds = timemodel::profileFolds(older);
+    for (std::size_t i = 0; i < folds.size(); ++i) {
+        EXPECT_EQ(folds[i], older.samples[i].heldOut ? 0 : 1 + older.samples[i].sample.viewpoint) << i;
+    }
+    // --refit: the same samples, now predicting the median; learned from the least, scaled by
+    // median / least = 1 / 0.9.
+    timemodel::DeviceProfile refitted = older;
+    const timemodel::ProfileFit fit = timemodel::refitProfile(refitted, "least");
+    EXPECT_EQ(refitted.timing.predicts, "median");
+    EXPECT_EQ(refitted.timing.learnedFrom, "least");
+    EXPECT_NEAR(refitted.timing.learnedScale, 1.0 / 0.9, 1e-12);
+    EXPECT_EQ(fit.choice.candidates.size(), 3u);
+    EXPECT_TRUE(timemodel::profileWarnings(refitted, older.glRenderer, 512, 384, older.machine, older.shading).empty());
+    const auto model = timemodel::modelFromProfile(refitted);
+    const timemodel::ProfileSample& any = refitted.samples[2];
+    EXPECT_NEAR(model->estimateMs(any.sample.features), any.medianMs, 1e-6 * any.medianMs);
+    EXPECT_EQ(any.sample.measuredMs, any.medianMs);
+    EXPECT_EQ(timemodel::profileFolds(timemodel::profileFromJson(timemodel::profileToJson(refitted), "r.json")), folds);
+    timing["clock"] = "wall-fastest";
+    EXPECT_NE(expectProfileError(document.dump()).find("calibration.timing.clock"), std::string::npos);
+    timing["clock"] = "wall-min";
+    timing["clock_request"] = 3;
     EXPECT_NE(expectProfileError(document.dump()).find("calibration.timing.clock_request"), std::string::npos);
 }
 

@@ -9,6 +9,8 @@
 #include <memory>
 #include <sstream>
 
+#include "timemodel/timing.hpp"
+
 namespace lodopt::timemodel {
 
 std::uint64_t SplitMix64::next() {
@@ -171,31 +173,51 @@ std::vector<ModelResult> fitAllModels(const std::vector<Sample>& fitSamples, con
 }
 
 std::vector<ErrorStats> rotatedHeldOutErrors(const std::vector<Sample>& samples, const std::vector<int>& folds) {
-    if (folds.size() != samples.size()) throw TimeModelError("rotatedHeldOutErrors: one fold per sample is needed");
-    const std::vector<std::string> names = timeModelNames();
-    std::vector<std::vector<double>> errors(names.size());
-    std::vector<bool> failed(names.size(), false);
+    std::vector<double> times;
+    for (const Sample& s : samples) times.push_back(s.measuredMs);
+    return rotatedHeldOutErrors(samples, times, folds, timeModelNames());
+}
+
+std::vector<ErrorStats> rotatedHeldOutErrors(const std::vector<Sample>& learned, const std::vector<double>& predicted,
+                                             const std::vector<int>& folds, const std::vector<std::string>& models) {
+    if (folds.size() != learned.size() || predicted.size() != learned.size()) {
+        throw TimeModelError("rotatedHeldOutErrors: one fold and one predicted time per sample are needed");
+    }
+    std::vector<std::vector<double>> errors(models.size());
+    std::vector<bool> failed(models.size(), false);
     const int foldCount = folds.empty() ? 0 : *std::max_element(folds.begin(), folds.end()) + 1;
     for (int fold = 0; fold < foldCount; ++fold) {
-        std::vector<Sample> fit, held;
-        for (std::size_t i = 0; i < samples.size(); ++i) (folds[i] == fold ? held : fit).push_back(samples[i]);
+        std::vector<Sample> fit;
+        std::vector<double> fitLearned, fitPredicted;
+        std::vector<std::size_t> held;
+        for (std::size_t i = 0; i < learned.size(); ++i) {
+            if (folds[i] == fold) {
+                held.push_back(i);
+                continue;
+            }
+            fit.push_back(learned[i]);
+            fitLearned.push_back(learned[i].measuredMs);
+            fitPredicted.push_back(predicted[i]);
+        }
         if (held.empty()) continue;
-        for (std::size_t m = 0; m < names.size(); ++m) {
+        const double scale = learnedScale(fitLearned, fitPredicted);
+        for (Sample& s : fit) s.measuredMs *= scale;
+        for (std::size_t m = 0; m < models.size(); ++m) {
             if (failed[m]) continue;
-            std::unique_ptr<TimeModel> model = makeTimeModel(names[m]);
+            std::unique_ptr<TimeModel> model = makeTimeModel(models[m]);
             try {
                 model->fit(fit);
             } catch (const TimeModelError&) {
                 failed[m] = true;
                 continue;
             }
-            for (const Sample& s : held) {
-                errors[m].push_back(std::abs(s.measuredMs - model->estimateMs(s.features)) / s.measuredMs);
+            for (std::size_t i : held) {
+                errors[m].push_back(std::abs(predicted[i] - model->estimateMs(learned[i].features)) / predicted[i]);
             }
         }
     }
-    std::vector<ErrorStats> result(names.size());
-    for (std::size_t m = 0; m < names.size(); ++m) {
+    std::vector<ErrorStats> result(models.size());
+    for (std::size_t m = 0; m < models.size(); ++m) {
         if (!failed[m]) result[m] = summarizeErrors(errors[m]);
     }
     return result;

@@ -12,6 +12,7 @@
 #include "scenes/atomic_file.hpp"
 #include "scenes/builtin.hpp"
 #include "shipped_profiles.hpp"
+#include "timemodel/timing.hpp"
 
 namespace lodopt::timemodel {
 
@@ -78,15 +79,11 @@ private:
 
 }  // namespace
 
-std::vector<std::string> timingClockNames() {
-    return {"wall-min", "wall-min-median", "wall-median", "cpu"};
-}
-
-double timeOnClock(const ProfileSample& sample, const std::string& clock) {
-    if (clock == "wall-min") return sample.wallMinMs;
-    if (clock == "wall-min-median") return sample.wallMinMedianMs;
-    if (clock == "wall-median") return sample.wallMedianMs;
-    if (clock == "cpu") return sample.cpuMs;
+double timeOfStatistic(const ProfileSample& sample, const std::string& statistic) {
+    if (statistic == "least") return sample.leastMs;
+    if (statistic == "least-median") return sample.leastMedianMs;
+    if (statistic == "median") return sample.medianMs;
+    if (statistic == "cpu") return sample.cpuMs;
     return 0.0;
 }
 
@@ -149,10 +146,13 @@ std::string profileToJson(const DeviceProfile& profile) {
     for (const ProfileSample& s : profile.samples) {
         (s.heldOut ? heldOutCount : fitCount) += 1;
         Json entry = {{"viewpoint", s.sample.viewpoint}, {"held_out", s.heldOut}, {"measured_ms", s.sample.measuredMs}};
-        if (s.wallMinMs > 0.0) entry["wall_min_ms"] = s.wallMinMs;
-        if (s.wallMedianMs > 0.0) entry["wall_median_ms"] = s.wallMedianMs;
+        if (s.fold >= 0) entry["fold"] = s.fold;
+        if (s.leastMs > 0.0) entry["least_ms"] = s.leastMs;
+        if (s.leastMedianMs > 0.0) entry["least_median_ms"] = s.leastMedianMs;
+        if (s.medianMs > 0.0) entry["median_ms"] = s.medianMs;
         if (s.cpuMs > 0.0) entry["cpu_ms"] = s.cpuMs;
-        if (s.wallMinMedianMs > 0.0) entry["wall_min_median_ms"] = s.wallMinMedianMs;
+        if (s.wallMedianMs > 0.0) entry["wall_median_ms"] = s.wallMedianMs;
+        if (s.gpuMedianMs > 0.0) entry["gpu_median_ms"] = s.gpuMedianMs;
         entry["features"] = s.sample.features.values;
         samples.push_back(entry);
     }
@@ -175,8 +175,11 @@ std::string profileToJson(const DeviceProfile& profile) {
           {"fit_samples", fitCount},
           {"held_out_samples", heldOutCount},
           {"timing",
-           {{"clock", t.clock},
-            {"clock_request", t.clockRequest},
+           {{"predicts", t.predicts},
+            {"frame_clock", t.frameClock},
+            {"learned_from", t.learnedFrom},
+            {"learned_scale", t.learnedScale},
+            {"learn_request", t.learnRequest},
             {"rounds", t.rounds},
             {"repeats_per_round", t.repeatsPerRound},
             {"warmup", t.warmup},
@@ -241,7 +244,29 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
     profile.viewpoints = static_cast<int>(read.integer(calibration, "viewpoints", "calibration"));
     profile.heldOutViewpoints = static_cast<int>(read.integer(calibration, "held_out_viewpoints", "calibration"));
     const Json& timing = read.field(calibration, "timing", "calibration");
-    profile.timing.clock = read.text(timing, "clock", "calibration.timing");
+    // Profiles written before the predicted statistic was fixed: "clock" named the one statistic
+    // they were fitted on and predict, on the wall clock, unscaled.
+    const bool fixedPrediction = timing.contains("predicts");
+    auto statistic = [&](const char* key) {
+        const std::string name = read.text(timing, key, "calibration.timing");
+        const std::string canonical = canonicalStatistic(name);
+        if (canonical.empty()) read.fail(std::string("calibration.timing.") + key, "unknown statistic '" + name + "'");
+        return canonical;
+    };
+    if (fixedPrediction) {
+        profile.timing.predicts = statistic("predicts");
+        profile.timing.learnedFrom = statistic("learned_from");
+        profile.timing.learnedScale = read.number(timing, "learned_scale", "calibration.timing");
+        if (!(profile.timing.learnedScale > 0.0)) read.fail("calibration.timing.learned_scale", "must be > 0");
+        profile.timing.frameClock = read.text(timing, "frame_clock", "calibration.timing");
+        profile.timing.learnRequest = read.text(timing, "learn_request", "calibration.timing");
+    } else {
+        profile.timing.learnedFrom = statistic("clock");
+        profile.timing.predicts = profile.timing.learnedFrom;
+        if (timing.contains("clock_request")) {
+            profile.timing.learnRequest = read.text(timing, "clock_request", "calibration.timing");
+        }
+    }
     profile.timing.rounds = static_cast<int>(read.integer(timing, "rounds", "calibration.timing"));
     profile.timing.repeatsPerRound = static_cast<int>(read.integer(timing, "repeats_per_round", "calibration.timing"));
     profile.timing.warmup = static_cast<int>(read.integer(timing, "warmup", "calibration.timing"));
@@ -249,9 +274,6 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
     profile.timing.p90Spread = read.number(timing, "p90_spread", "calibration.timing");
     profile.timing.seconds = read.number(timing, "seconds", "calibration.timing");
     // Optional: profiles written before they were recorded.
-    if (timing.contains("clock_request")) {
-        profile.timing.clockRequest = read.text(timing, "clock_request", "calibration.timing");
-    }
     if (timing.contains("split_half_median")) {
         profile.timing.splitHalfMedian = read.number(timing, "split_half_median", "calibration.timing");
         profile.timing.splitHalfP90 = read.number(timing, "split_half_p90", "calibration.timing");
@@ -346,12 +368,24 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
             ProfileSample s;
             s.sample.viewpoint = static_cast<int>(read.integer(samples[i], "viewpoint", at));
             s.heldOut = read.boolean(samples[i], "held_out", at);
+            if (samples[i].contains("fold")) {
+                s.fold = static_cast<int>(read.integer(samples[i], "fold", at));
+                if (s.fold < 0 || (s.fold == 0) != s.heldOut) read.fail(at + ".fold", "must be 0 exactly when held out");
+            }
             s.sample.measuredMs = read.number(samples[i], "measured_ms", at);
-            if (samples[i].contains("wall_min_ms")) s.wallMinMs = read.number(samples[i], "wall_min_ms", at);
-            if (samples[i].contains("wall_median_ms")) s.wallMedianMs = read.number(samples[i], "wall_median_ms", at);
-            if (samples[i].contains("cpu_ms")) s.cpuMs = read.number(samples[i], "cpu_ms", at);
-            if (samples[i].contains("wall_min_median_ms")) {
-                s.wallMinMedianMs = read.number(samples[i], "wall_min_median_ms", at);
+            auto optional = [&](const char* key, double& value) {
+                if (samples[i].contains(key)) value = read.number(samples[i], key, at);
+            };
+            optional("least_ms", s.leastMs);
+            optional("least_median_ms", s.leastMedianMs);
+            optional("median_ms", s.medianMs);
+            optional("cpu_ms", s.cpuMs);
+            optional("wall_median_ms", s.wallMedianMs);
+            optional("gpu_median_ms", s.gpuMedianMs);
+            if (!fixedPrediction) {  // older names, all on the wall clock
+                optional("wall_min_ms", s.leastMs);
+                optional("wall_min_median_ms", s.leastMedianMs);
+                s.medianMs = s.wallMedianMs;
             }
             const Json& features = read.field(samples[i], "features", at);
             if (!features.is_array() || features.size() != fileFeatures.size()) {
@@ -398,8 +432,18 @@ std::unique_ptr<TimeModel> modelFromProfile(const DeviceProfile& profile, const 
 }
 
 std::vector<std::string> profileWarnings(const DeviceProfile& profile, const std::string& glRenderer, int width,
-                                         int height, const MachineDescription& machine, const std::string& shading) {
+                                         int height, const MachineDescription& machine, const std::string& shading,
+                                         const std::string& frameClock) {
     std::vector<std::string> warnings;
+    if (profile.timing.predicts != kPredictedStatistic) {
+        warnings.push_back("the profile predicts the " + profile.timing.predicts +
+                           " of a frame's draws (written before every profile predicted their median, what "
+                           "render --time measures): recalibrate");
+    }
+    if (!frameClock.empty() && frameClock != profile.timing.frameClock) {
+        warnings.push_back("the profile timed frames on the " + profile.timing.frameClock + " clock, this renderer on the " +
+                           frameClock + " clock: predictions and measurements are different quantities");
+    }
     if (shading != profile.shading) {
         warnings.push_back("the profile was measured with --shading " + profile.shading + ", this is " + shading +
                            ": per-pixel costs differ");

@@ -1,16 +1,17 @@
-// Timing frames on the device and calibrating its profile: what `lodopt calibrate` runs, and how
-// `lodopt bench` times a frame for the time models' error.
+// Calibrating a device's profile: what `lodopt calibrate` runs.
 //
-// A batch of timed draws: `warmup` untimed draws, then `repeats` timed draw + glFinish
-// (renderer::Renderer::drawAndFinish), each on the steady clock and on the process CPU clock
-// (all of llvmpipe's threads). A calibration times every planned sample (timemodel::
-// planCalibration) in interleaved passes, a fresh shuffled order per pass, so that a burst of
-// load from elsewhere spreads over many samples instead of ruining one: at least `rounds`
-// passes, then more (up to `maxRounds`) while the wall time since `start` plus the slowest pass
-// so far stays within `timeBudgetSeconds`. It then fits every time model on the clock asked for
-// (or, with timemodel::kAutoClock, the wall clock whose split-half repeatability on the fitting
-// samples was best), holds every viewpoint out once, and refits on the other clocks from the
-// same draws so that one run shows how much of the error is the model and how much the timing.
+// Every frame is timed by renderer::Renderer::timeFrames, as `render --time`, `schedule
+// --render` and `bench` time theirs: `warmup` untimed draws, then `repeats` timed draw + glFinish
+// on the renderer's frame clock (wall, or a GPU timer), with process CPU time beside. A
+// calibration times every planned sample (timemodel::planCalibration) in interleaved passes, a
+// fresh shuffled order per pass, so that a burst of load from elsewhere spreads over many
+// samples instead of ruining one: at least `rounds` passes, then more (up to `maxRounds`) while
+// the wall time since `start` plus the slowest pass so far stays within `timeBudgetSeconds`. It
+// then fits every time model to predict the median of a frame's draws (timemodel/timing.hpp),
+// learning from the statistic asked for (or, with timemodel::kAutoStatistic, the one that
+// predicted the median best with every fitting viewpoint held out once), holds every viewpoint
+// out once, and refits learning from the other statistics of the same draws, so that one run
+// shows how much of the error is the model and how much the clock.
 #pragma once
 
 #include <chrono>
@@ -26,32 +27,21 @@
 
 namespace lodopt::evaluation {
 
-// One batch of timed draws of a frame, milliseconds.
-struct DrawTimes {
-    double wallMin = 0.0, wallMedian = 0.0, cpuMedian = 0.0;
-};
-// `repeats` >= 1, `warmup` >= 0.
-DrawTimes timeDraws(renderer::Renderer& renderer, const scenes::Combination& combination, const scenes::Camera& camera,
-                    int repeats, int warmup);
-// What `clock` (timemodel::timingClockNames) takes from one batch: the least wall time for
-// wall-min and wall-min-median (which then take the least, or the median, over the passes),
-// the median wall time for wall-median, the median CPU time for cpu.
-double batchTime(const DrawTimes& times, const std::string& clock);
-
 struct CalibrationSettings {
-    int rounds = 6;                   // passes at least, >= 1
-    int maxRounds = 25;               // passes at most while time is left
+    int rounds = 6;      // passes at least, >= 1
+    int maxRounds = 25;  // passes at most while time is left
     double timeBudgetSeconds = 110.0;
-    int repeats = 3;                  // timed draws per sample and pass, >= 1
+    int repeats = 3;  // timed draws per sample and pass, >= 1
     int warmup = 1;
-    std::string clock = timemodel::kAutoClock;  // a timing clock's name, or kAutoClock
-    std::uint64_t seed = 1;                     // the passes' shuffles
+    std::string learnFrom = timemodel::kAutoStatistic;  // a timing statistic's name, or kAutoStatistic
+    std::uint64_t seed = 1;                             // the passes' shuffles
     std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();  // the budget's
 };
 
-// The same draws fitted on a clock other than the profile's.
-struct OtherClockFit {
-    std::string clock;
+// The same draws, the models learning from another statistic (still predicting the median).
+struct OtherStatisticFit {
+    std::string statistic;
+    double scale = 1.0;  // timemodel::learnedScale on the fitting samples
     std::vector<timemodel::ModelResult> models;
     timemodel::ErrorStats repeatability;  // split-half, held-out samples
 };
@@ -59,10 +49,10 @@ struct OtherClockFit {
 struct CalibrationResult {
     // Every field but `sceneSeed`, which only the caller knows; `seed` is the plan's as given.
     timemodel::DeviceProfile profile;
-    timemodel::ClockChoice choice;  // what kAutoClock judged (computed whatever was asked)
-    std::vector<OtherClockFit> otherClocks;
-    timemodel::ErrorStats spread;         // between passes, per sample, on the fitted clock
-    timemodel::ErrorStats repeatability;  // split-half, held-out samples, on the fitted clock
+    timemodel::LearnChoice choice;  // what kAutoStatistic judged (computed whatever was asked)
+    std::vector<OtherStatisticFit> otherStatistics;
+    timemodel::ErrorStats spread;         // between passes' medians, per sample
+    timemodel::ErrorStats repeatability;  // split-half of the median, held-out samples
     std::size_t fitSamples = 0, heldOutSamples = 0;
     int folds = 1;
 };

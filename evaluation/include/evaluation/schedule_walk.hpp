@@ -31,8 +31,7 @@ struct WalkOptions {
     bool baseline = true;        // with render: the unscheduled baseline too
     bool feedback = true;        // with render: correct the time model from measured times
     bool checkFeatures = false;  // predict each decision from exact features as well (slow)
-    int repeats = 5;             // timed draws per frame, >= 1
-    renderer::Renderer::Statistic statistic = renderer::Renderer::Statistic::Min;
+    int repeats = 5;             // timed draws per frame, >= 1: the frame's time is their median
     metrics::MetricParameters metrics;
 };
 
@@ -121,7 +120,6 @@ struct MeasurementCeiling {
     std::vector<CeilingProbe> probes;
 };
 MeasurementCeiling probeMeasurementCeiling(renderer::Renderer& renderer, const scenes::CameraPath& path,
-                                           const std::vector<WalkFrame>& frames, int measurements, int repeats,
-                                           renderer::Renderer::Statistic statistic);
+                                           const std::vector<WalkFrame>& frames, int measurements, int repeats);
 
 }  // namespace lodopt::evaluation

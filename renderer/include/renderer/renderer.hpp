@@ -52,6 +52,31 @@ Shading parseShading(const std::string& name);
 // the metrics score are llvmpipe's, deterministic) or EGL (the user's GPU; docs/renderer.md).
 enum class Backend { OsMesa, Egl };
 
+// What a frame's time is read from (docs/renderer.md "Timing"). Wall: the steady clock around
+// draw + glFinish, what the CPU waits for the frame. GpuTimer: a GL_TIME_ELAPSED query around
+// the draw, the GPU's own time for it. Auto: GpuTimer where the driver's timer has counter bits
+// and draws on a GPU; Wall on software rasterizers (llvmpipe's timer ends when the draw is
+// queued, before its threads rasterize: 0.01-0.06 ms for 3-15 ms frames) and where it has none.
+enum class FrameClock { Auto, Wall, GpuTimer };
+const char* frameClockName(FrameClock clock);        // "auto", "wall", "gpu"
+FrameClock parseFrameClock(const std::string& name);  // throws RenderError for another name
+// llvmpipe, softpipe, SwiftShader, Mesa's "Software Rasterizer": GL_RENDERER names a CPU rasterizer.
+bool isSoftwareRasterizer(const std::string& glRenderer);
+
+// One batch of timed draws of one frame, each draw's time in milliseconds. Every lodopt command
+// that times a frame (calibrate, render --time, schedule --render, bench) takes it from here.
+struct FrameTimes {
+    FrameClock clock = FrameClock::Wall;  // resolved: which list is the frame's time
+    std::vector<double> wallMs;           // steady clock around draw + glFinish
+    std::vector<double> gpuMs;            // GL_TIME_ELAPSED of the draw; empty without timer queries
+    std::vector<double> cpuMs;            // process CPU time (every thread) over the same span
+    const std::vector<double>& frameMs() const { return clock == FrameClock::GpuTimer ? gpuMs : wallMs; }
+    // The median of frameMs(), the mean of the middle two for an even count: the frame time every
+    // device profile predicts (docs/timemodel.md "What a profile predicts"). 0 with no draw.
+    double median() const;
+    double least() const;  // of frameMs(); 0 with no draw
+};
+
 struct RenderSettings {
     int width = 512;   // pixels, 1..16384
     int height = 512;  // pixels, 1..16384
@@ -67,6 +92,7 @@ struct RenderSettings {
     // Sky; exact multiples of 1/255 so the cleared bytes are (158, 194, 230, 255) everywhere.
     glm::vec4 clearColor{158.0f / 255.0f, 194.0f / 255.0f, 230.0f / 255.0f, 1.0f};
     Backend backend = Backend::OsMesa;  // the platform Renderer(scene, settings) creates
+    FrameClock frameClock = FrameClock::Auto;  // what timeFrames reads a frame's time from
 };
 
 // A rendered image: RGBA8 rows top to bottom, and window-space depth in [0, 1] per pixel
@@ -177,13 +203,15 @@ public:
     Frame render(const scenes::Combination& combination, const scenes::Camera& camera);
     // Draws without reading pixels back, then glFinish: for timing only.
     void drawAndFinish(const scenes::Combination& combination, const scenes::Camera& camera);
-    // Wall time in ms of drawAndFinish over `repeats` after `warmup` unmeasured runs (steady
-    // clock around the draw + glFinish): their median, or their least (what each pass of the
-    // calibration's wall-min clocks takes; others' load only ever adds time). GL timer queries miss
-    // llvmpipe's rasterization, so they are not used.
-    enum class Statistic { Median, Min };
-    double timeRender(const scenes::Combination& combination, const scenes::Camera& camera, int repeats = 5,
-                      int warmup = 1, Statistic statistic = Statistic::Median);
+    // `warmup` untimed draws, then `repeats` (>= 1) timed ones, each draw + glFinish: wall time,
+    // process CPU time and, where the driver has timer queries, GL_TIME_ELAPSED, all recorded;
+    // FrameTimes::clock says which is the frame's time (settings().frameClock resolved).
+    FrameTimes timeFrames(const scenes::Combination& combination, const scenes::Camera& camera, int repeats,
+                          int warmup);
+    // settings().frameClock resolved for this context (never Auto).
+    FrameClock frameClock() const;
+    // Whether the context has GL_TIME_ELAPSED queries with counter bits (gpuMs is recorded).
+    bool hasTimerQueries() const;
 
     Layer renderLayer(int object, int level, const scenes::Camera& camera);
 

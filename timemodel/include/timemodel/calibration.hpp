@@ -95,6 +95,12 @@ std::vector<ModelResult> fitAllModels(const std::vector<Sample>& fitSamples, con
 // timeModelNames() (count 0 for a model that could not be fitted on some fold). `folds[i]` is
 // sample i's fold. Less hostage than heldOutErrors to which few viewpoints one seed holds out.
 std::vector<ErrorStats> rotatedHeldOutErrors(const std::vector<Sample>& samples, const std::vector<int>& folds);
+// The same for models learning from one statistic and predicting another (timing.hpp): per fold
+// the training samples' times (`learned[i].measuredMs`) are multiplied by the training samples'
+// learnedScale towards `predicted`, and the fold's errors are against `predicted`. One result per
+// name of `models`, in that order.
+std::vector<ErrorStats> rotatedHeldOutErrors(const std::vector<Sample>& learned, const std::vector<double>& predicted,
+                                             const std::vector<int>& folds, const std::vector<std::string>& models);
 
 // The published-style table: per model, mean / median / p90 / max of |t_act − t_est| / t_act
 // on the held-out samples (and the fit mean), in percent.

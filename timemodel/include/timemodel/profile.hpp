@@ -35,53 +35,46 @@ struct MachineDescription {
 // The machine this process runs on.
 MachineDescription describeMachine();
 
-// What a sample's measured time is (the fitted target):
-//   "wall-min"     least steady-clock time of draw + glFinish over every timed draw of the
-//                  sample: others' load only ever adds time, so the minimum is the best
-//                  estimate of the frame's time on an unloaded machine;
-//   "wall-min-median" median over the passes of each pass's least time: what one least-of-a-
-//                  few measurement (the scheduler's frame timing) typically gives. Where the
-//                  fastest draws scatter widely (a long lower tail), it repeats more closely
-//                  than the least of all draws (docs/timemodel.md "A steadier statistic");
-//   "wall-median"  median over the passes of each pass's median (what `render --time` does);
-//   "cpu"          median process CPU time (all of llvmpipe's threads) of draw + glFinish:
-//                  the work, nearly immune to other tenants, but not wall time.
-// The clock a calibration falls back to when a run cannot judge repeatability (otherwise
-// `lodopt calibrate` chooses per run: kAutoClock, timing.hpp); where the fastest draws scatter
-// it meets the error goal more often than wall-min (docs/timemodel.md "A steadier statistic").
-inline constexpr const char* kDefaultTimingClock = "wall-min-median";
-std::vector<std::string> timingClockNames();
-
 struct TimingSettings {
-    std::string clock = kDefaultTimingClock;
+    // What the profile's models predict (timing.hpp): "median" in every profile written since it
+    // was fixed; older profiles predict the statistic they were fitted on (profileWarnings says so).
+    std::string predicts = "median";
+    std::string frameClock = "wall";     // renderer::frameClockName: what a frame's time was read from
+    std::string learnedFrom = "median";  // the statistic the models were fitted on (timing.hpp)
+    double learnedScale = 1.0;           // learned times were multiplied by it to predict `predicts`
+    // What the calibration was asked for: a statistic's name, or "auto" (timing.hpp) when
+    // `learnedFrom` was chosen in that run; empty in profiles written before it was recorded.
+    std::string learnRequest;
     int rounds = 0;             // interleaved passes over all samples
-    int repeatsPerRound = 0;    // timed draws per sample per pass (median taken)
+    int repeatsPerRound = 0;    // timed draws per sample per pass
     int warmup = 0;             // untimed draws before each timed batch
     double medianSpread = 0.0;  // median over samples of (max − min) / median across passes
     double p90Spread = 0.0;
     double seconds = 0.0;  // wall time of the whole calibration
-    // Held-out samples' time from the even passes against the odd ones (same statistic), as a
-    // share of the time fitted: median and p90. How far the clock itself moves a sample; 0 in
-    // profiles written before it was recorded, or with one pass.
+    // Held-out samples' median from the even passes against the odd ones, as a share of their
+    // median: median and p90. How far the clock itself moves a sample, a floor under the held-out
+    // errors; 0 in profiles written before it was recorded, or with one pass.
     double splitHalfMedian = 0.0;
     double splitHalfP90 = 0.0;
-    // What the calibration was asked for: a clock's name, or "auto" (timing.hpp) when `clock` is
-    // the wall clock that repeated best in that run; empty in profiles written before it was recorded.
-    std::string clockRequest;
 };
 
 struct ProfileSample {
-    Sample sample;  // measuredMs per TimingSettings::clock
+    Sample sample;  // measuredMs: the predicted statistic (TimingSettings::predicts)
     bool heldOut = false;
-    // Every statistic of the same draws (0 when not recorded), so one run can be refitted
-    // to another clock.
-    double wallMinMs = 0.0;
-    double wallMedianMs = 0.0;
+    int fold = -1;  // the sample's viewpoint's fold (0 = held out); -1 in profiles written before it was recorded
+    // Every statistic of the same draws (timing.hpp; 0 when not recorded), so one run can be
+    // refitted to learn from another.
+    double leastMs = 0.0;
+    double leastMedianMs = 0.0;
+    double medianMs = 0.0;
     double cpuMs = 0.0;
-    double wallMinMedianMs = 0.0;
+    // Medians of the other clocks' times of the same draws (0 when not recorded): wall time, and
+    // GL_TIME_ELAPSED where the driver has timer queries.
+    double wallMedianMs = 0.0;
+    double gpuMedianMs = 0.0;
 };
-// `sample`'s time on `clock` (one of timingClockNames()); 0 when not recorded.
-double timeOnClock(const ProfileSample& sample, const std::string& clock);
+// `sample`'s time by `statistic` (one of timingStatisticNames(), timing.hpp); 0 when not recorded.
+double timeOfStatistic(const ProfileSample& sample, const std::string& statistic);
 
 struct DeviceProfile {
     std::string created;  // ISO 8601 UTC, e.g. 2024-05-01T12:00:00Z
@@ -114,12 +107,13 @@ DeviceProfile loadProfile(const std::string& path);
 // ProfileError when the profile has no such model or it was not fitted.
 std::unique_ptr<TimeModel> modelFromProfile(const DeviceProfile& profile, const std::string& name = "");
 
-// Why a profile may not fit the current setup: a different renderer string, render size,
-// shading, CPU model or core count (one sentence each; empty when it matches). Empty
-// `glRenderer` skips that check.
+// Why a profile may not fit the current setup: a different renderer string, frame clock, render
+// size, shading, CPU model or core count, or a profile that predicts another statistic than the
+// median every command measures (one sentence each; empty when it matches). Empty `glRenderer`
+// or `frameClock` skips that check.
 std::vector<std::string> profileWarnings(const DeviceProfile& profile, const std::string& glRenderer, int width,
-                                         int height, const MachineDescription& machine,
-                                         const std::string& shading);
+                                         int height, const MachineDescription& machine, const std::string& shading,
+                                         const std::string& frameClock = "");
 
 // Scenes with a profile built into the library.
 std::vector<std::string> shippedProfileScenes();
