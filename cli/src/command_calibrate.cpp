@@ -181,9 +181,14 @@ void printCalibration(const CalibrateOptions& options, const evaluation::Calibra
         for (const std::string& note : r.fit.notes) std::cout << "  note (" << r.name << "): " << note << "\n";
     }
     for (const evaluation::OtherStatisticFit& other : run.otherStatistics) {
-        std::snprintf(line, sizeof line, "same draws, learned from %s x %.3f (repeatability %.1f%% / %.1f%%):",
-                      other.statistic.c_str(), other.scale, 100.0 * other.repeatability.median,
-                      100.0 * other.repeatability.p90);
+        if (other.repeatability.count > 0) {
+            std::snprintf(line, sizeof line, "same draws, learned from %s x %.3f (repeatability %.1f%% / %.1f%%):",
+                          other.statistic.c_str(), other.scale, 100.0 * other.repeatability.median,
+                          100.0 * other.repeatability.p90);
+        } else {  // --refit: no passes to compare
+            std::snprintf(line, sizeof line, "same draws, learned from %s x %.3f:", other.statistic.c_str(),
+                          other.scale);
+        }
         std::cout << line;
         for (const timemodel::ModelResult& r : other.models) {
             if (!r.fitted) continue;

@@ -185,6 +185,40 @@ TEST_F(TimeModelCli, EstimateFromTheProfilePredictsEveryModel) {
     }
 }
 
+TEST_F(TimeModelCli, EstimateWarnsWhenFramesWouldBeTimedOnAnotherClock) {
+    ASSERT_EQ(sCalibration.exitCode, 0);
+    // The profile timed llvmpipe's frames on the wall clock; asked about the GPU timer's frames.
+    const nlohmann::json result = estimate("--profile " + sProfile + " --frame-clock gpu --levels 0,2,1");
+    ASSERT_FALSE(result.is_null());
+    ASSERT_EQ(result["warnings"].size(), 1u);
+    EXPECT_NE(result["warnings"][0].get<std::string>().find("wall clock, this renderer on the gpu clock"),
+              std::string::npos)
+        << result["warnings"];
+    EXPECT_TRUE(estimate("--profile " + sProfile + " --frame-clock wall --levels 0,2,1")["warnings"].empty());
+    estimate("--profile " + sProfile + " --frame-clock cpu", 2);  // not a frame clock
+}
+
+TEST_F(TimeModelCli, RefitLearnsFromTheRecordedSamplesWithoutTimingAnything) {
+    ASSERT_EQ(sCalibration.exitCode, 0);
+    const std::string out = (sDir / "refitted.json").string();
+    const CommandResult result =
+        run("calibrate --refit " + sProfile + " --learn-from least --out " + out + " --json");
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    const nlohmann::json report = nlohmann::json::parse(result.output);
+    EXPECT_EQ(report["refit"], sProfile);
+    EXPECT_EQ(report["learned_from"], "least");
+    EXPECT_EQ(report["predicts"], "median");
+    const lodopt::timemodel::DeviceProfile original = lodopt::timemodel::loadProfile(sProfile);
+    const lodopt::timemodel::DeviceProfile refitted = lodopt::timemodel::loadProfile(out);
+    ASSERT_EQ(refitted.samples.size(), original.samples.size());
+    EXPECT_EQ(refitted.timing.rounds, original.timing.rounds);  // the same draws, none added
+    for (std::size_t i = 0; i < original.samples.size(); ++i) {
+        EXPECT_EQ(refitted.samples[i].leastMs, original.samples[i].leastMs);
+        EXPECT_EQ(refitted.samples[i].sample.measuredMs, original.samples[i].medianMs);
+    }
+    EXPECT_EQ(run("calibrate --refit " + (sDir / "missing.json").string() + " --out " + out).exitCode, 2);
+}
+
 TEST_F(TimeModelCli, EstimateWarnsForAnotherRenderSize) {
     ASSERT_EQ(sCalibration.exitCode, 0);
     const nlohmann::json result = estimate("--profile " + sProfile + " --size 512x512 --levels 0,2,1");
