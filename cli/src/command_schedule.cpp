@@ -58,9 +58,8 @@ struct ScheduleOptions {
     double beta = 0.3;
     int frames = 0;
     int stride = 1;
-    // A frame's measured time: the least of 5 timed draws, what the calibration's default clock
-    // (wall-min-median) fits. The median of 3 moved by more than 10% between repeated
-    // measurements of one frame a third of the time on an idle machine (docs/scheduler.md).
+    // A frame's measured time: the median of 5 timed draws, what every device profile predicts
+    // (docs/scheduler.md "Measured frame time").
     int repeats = 5;
     // After the path, the first, middle and last frames' decisions are each timed this often back to
     // back: how far one frame's measurement scatters here bounds what any scheduler can put
