@@ -2,15 +2,14 @@
 #include "renderer/renderer.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
-#include <ctime>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
 #include <tuple>
 
 #include "gl_common.hpp"
+#include "frame_timer.hpp"
 #include "pbr_pass.hpp"
 #include "shaders.hpp"
 
@@ -130,55 +129,7 @@ struct Renderer::Impl {
     std::vector<std::uint8_t> layerColor;  // renderLayer's bounded readback
     std::vector<float> layerDepth;
     std::string vendor, rendererName, version;
-    GLuint timerQuery = 0;  // GL_TIME_ELAPSED; 0 when the driver's timer has no counter bits
-    FrameClock frameClock = FrameClock::Wall;
-
-    // A renderer's first timed frames come after this, once: one frame read back, then draws
-    // until kWarmUpDraws and kWarmUpSeconds have both passed. On llvmpipe a context's draws are
-    // slower until its first read-back (about twice: harbor 256x192, 11-17 ms before, 6 ms
-    // after, AMD EPYC), and its first dozen draws after that alternate between two speeds; a
-    // command that times one frame right after start (render --time) would time that instead of
-    // what a running application sees (docs/renderer.md "Timing").
-    bool timingWarmedUp = false;
-    static constexpr int kWarmUpDraws = 12;
-    static constexpr double kWarmUpSeconds = 0.25;
-    void warmUpForTiming(const scenes::Combination& combination, const scenes::Camera& camera) {
-        Frame scratch;
-        draw(combination, camera);
-        readBack(scratch);
-        const auto start = std::chrono::steady_clock::now();
-        for (int drawn = 0; drawn < kWarmUpDraws ||
-                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() <
-                                kWarmUpSeconds;
-             ++drawn) {
-            draw(combination, camera);
-            glFinish();
-        }
-        timingWarmedUp = true;
-    }
-
-    // Resolves settings.frameClock for this context (renderer.hpp FrameClock).
-    void setUpTiming() {
-        GLint bits = 0;
-        glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
-        if (glGetError() != GL_NO_ERROR) bits = 0;
-        if (bits > 0) glGenQueries(1, &timerQuery);
-        switch (settings.frameClock) {
-        case FrameClock::Wall:
-            frameClock = FrameClock::Wall;
-            break;
-        case FrameClock::GpuTimer:
-            if (!timerQuery) {
-                throw RenderError("frame clock gpu: " + rendererName +
-                                  " has no GL_TIME_ELAPSED timer (0 counter bits); use --timer wall");
-            }
-            frameClock = FrameClock::GpuTimer;
-            break;
-        case FrameClock::Auto:
-            frameClock = timerQuery && !isSoftwareRasterizer(rendererName) ? FrameClock::GpuTimer : FrameClock::Wall;
-            break;
-        }
-    }
+    std::unique_ptr<FrameTimer> timer;  // made with the context (frame_timer.hpp)
 
     Impl(const scenes::Scene& s, RenderSettings st) : scene(s), settings(st) {}
 
@@ -453,7 +404,7 @@ Renderer::Renderer(const scenes::Scene& scene, RenderSettings settings, std::uni
     mImpl->vendor = glString(GL_VENDOR);
     mImpl->rendererName = glString(GL_RENDERER);
     mImpl->version = glString(GL_VERSION);
-    mImpl->setUpTiming();
+    mImpl->timer = std::make_unique<FrameTimer>(settings.frameClock, mImpl->rendererName);
     mImpl->createProgram();
     mImpl->createFramebuffer();
     mImpl->uploadTextures();
@@ -478,7 +429,7 @@ Renderer::~Renderer() {
     glDeleteRenderbuffers(1, &mImpl->depthBuffer);
     glDeleteFramebuffers(1, &mImpl->framebuffer);
     glDeleteProgram(mImpl->program);
-    if (mImpl->timerQuery) glDeleteQueries(1, &mImpl->timerQuery);
+    if (mImpl->timer) mImpl->timer->release();
 }
 
 const RenderSettings& Renderer::settings() const { return mImpl->settings; }
@@ -510,38 +461,20 @@ FrameTimes Renderer::timeFrames(const scenes::Combination& combination, const sc
     if (repeats < 1) throw RenderError("timeFrames: repeats must be >= 1, got " + std::to_string(repeats));
     scenes::validateCombination(mImpl->scene, combination);
     mImpl->activate();
-    if (!mImpl->timingWarmedUp) mImpl->warmUpForTiming(combination, camera);
-    for (int i = 0; i < warmup; ++i) {
-        mImpl->draw(combination, camera);
-        glFinish();
-    }
-    FrameTimes times;
-    times.clock = mImpl->frameClock;
-    times.wallMs.reserve(std::size_t(repeats));
-    times.cpuMs.reserve(std::size_t(repeats));
-    const bool query = mImpl->timerQuery != 0;
-    if (query) times.gpuMs.reserve(std::size_t(repeats));
-    for (int i = 0; i < repeats; ++i) {
-        const double cpuStart = processCpuMs();
-        const auto wallStart = std::chrono::steady_clock::now();
-        if (query) glBeginQuery(GL_TIME_ELAPSED, mImpl->timerQuery);
-        mImpl->draw(combination, camera);
-        if (query) glEndQuery(GL_TIME_ELAPSED);
-        glFinish();
-        const auto wallStop = std::chrono::steady_clock::now();
-        times.cpuMs.push_back(processCpuMs() - cpuStart);
-        times.wallMs.push_back(std::chrono::duration<double, std::milli>(wallStop - wallStart).count());
-        if (query) {  // after glFinish the result is ready: reading it does not stall the next draw
-            GLuint64 nanoseconds = 0;
-            glGetQueryObjectui64v(mImpl->timerQuery, GL_QUERY_RESULT, &nanoseconds);
-            times.gpuMs.push_back(double(nanoseconds) * 1e-6);
-        }
-    }
-    return times;
+    Impl& impl = *mImpl;
+    const auto draw = [&] { impl.draw(combination, camera); };
+    impl.timer->warmUpOnce(
+        [&] {
+            Frame scratch;
+            draw();
+            impl.readBack(scratch);
+        },
+        draw);
+    return impl.timer->time(draw, repeats, warmup);
 }
 
-FrameClock Renderer::frameClock() const { return mImpl->frameClock; }
-bool Renderer::hasTimerQueries() const { return mImpl->timerQuery != 0; }
+FrameClock Renderer::frameClock() const { return mImpl->timer->clock(); }
+bool Renderer::hasTimerQueries() const { return mImpl->timer->hasQuery(); }
 
 Layer Renderer::renderLayer(int object, int level, const scenes::Camera& camera) {
     const scenes::Scene& scene = mImpl->scene;
