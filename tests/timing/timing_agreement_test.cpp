@@ -75,10 +75,11 @@ Attempt calibrateAndCompare(const std::filesystem::path& dir, int seed) {
                   "seed %d: mean error %.1f%%, signed %.1f%%; the calibration reported mean %.1f%%, p90 %.1f%%\n", seed,
                   100.0 * mean, 100.0 * signedMean, 100.0 * reportedMean, 100.0 * reportedP90);
     attempt.report += line;
-    // Within what the calibration reported: no frame-by-frame error beyond its p90 on average,
-    // and no bias beyond its mean (a profile predicting another statistic, the least of the draws
-    // say, is off on every frame in the same direction).
-    attempt.agreed = mean <= reportedP90 && std::abs(signedMean) <= reportedMean;
+    // Within what the calibration reported: the mean error over the frames no more than its p90.
+    // A context timed before it had warmed up was off by 30-45 % here (estimates at 4.5-8 ms against
+    // a p90 of 17-25 %); a profile predicting another statistic than the median is off by that
+    // statistic's distance on every frame.
+    attempt.agreed = mean <= reportedP90;
     return attempt;
 }
 
