@@ -125,9 +125,6 @@ LearnChoice chooseStatisticToLearn(const std::vector<ProfileSample>& samples, co
     return choice;
 }
 
-}  // namespace lodopt::timemodel
-
-namespace lodopt::timemodel {
 
 namespace {
 
