@@ -155,7 +155,7 @@ void printCalibration(const CalibrateOptions& options, const evaluation::Calibra
                   timing.learnedFrom.c_str(), timing.learnedScale);
     std::cout << line;
     if (options.learnFrom == timemodel::kAutoStatistic && !run.choice.measured) {
-        std::cout << " (auto: one fitting fold leaves nothing to judge)";
+        std::cout << " (auto: one fitting viewpoint leaves nothing to judge)";
     } else if (options.learnFrom == timemodel::kAutoStatistic) {
         std::cout << " (auto: least error against the median, every fitting viewpoint held out once:";
         for (std::size_t c = 0; c < run.choice.candidates.size(); ++c) {
