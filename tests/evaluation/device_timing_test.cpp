@@ -67,7 +67,7 @@ TEST(DeviceTiming, CalibrationTimesEverySampleInEveryPassAndFitsTheProfile) {
         EXPECT_EQ(sample.medianMs, sample.wallMedianMs);       // on the wall clock here
         EXPECT_LE(sample.leastMs, sample.leastMedianMs);
         EXPECT_LE(sample.leastMedianMs, sample.medianMs);
-        EXPECT_GE(sample.gpuMedianMs, 0.0);
+        EXPECT_GT(sample.gpuMedianMs, 0.0);  // Mesa's timer, recorded beside the wall clock
     }
     // The models predict the median: the linear model's coefficients are the least's times the scale.
     const timemodel::ModelResult* linear = nullptr;

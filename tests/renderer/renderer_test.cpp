@@ -246,7 +246,9 @@ TEST(Renderer, TimesEveryDrawOnEveryClockAndReadsTheFrameClock) {
     // rasterizer's threads do, so auto reads the wall clock there.
     EXPECT_TRUE(renderer.hasTimerQueries());
     EXPECT_EQ(times.gpuMs.size(), 5u);
-    for (double ms : times.gpuMs) EXPECT_GE(ms, 0.0);
+    std::vector<double> timerMs = times.gpuMs;
+    std::sort(timerMs.begin(), timerMs.end());
+    EXPECT_GT(timerMs[2], 0.0);  // the timer counts something: the queued draw
     EXPECT_TRUE(renderer::isSoftwareRasterizer(renderer.glRendererString()));
     EXPECT_EQ(renderer.frameClock(), renderer::FrameClock::Wall);
     EXPECT_EQ(times.clock, renderer::FrameClock::Wall);
