@@ -18,6 +18,8 @@ struct FrameScheduler::Work {
     timemodel::FrameFeatures trial;
     std::vector<int> heldLevels;  // the refill's hysteresis decision, kept for comparison
     timemodel::FrameFeatures heldFeatures;
+    std::vector<int> exchangeLevels;  // the decision before a trial exchange
+    timemodel::FrameFeatures exchangeFeatures;
 
     void reserve(std::size_t objects) {
         visible.reserve(objects);
@@ -27,6 +29,7 @@ struct FrameScheduler::Work {
         denominators.reserve(objects);
         scratch.reserve(objects);
         heldLevels.reserve(objects);
+        exchangeLevels.reserve(objects);
     }
 };
 

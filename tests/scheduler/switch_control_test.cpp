@@ -7,8 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
+#include <vector>
 
 #include "fixtures.hpp"
+#include "scenes/mesh_builder.hpp"
 #include "scheduler/scheduler.hpp"
 
 namespace lodopt::scheduler {
@@ -222,6 +226,58 @@ TEST(SwitchControl, HysteresisRefillsAFrameFarUnderTheBudget) {
     EXPECT_EQ(levelAfterGrowingBudget(0.0), 1);          // never refill: the margin holds it
     // A band wide enough to hold level 1: the margin keeps it (no switch).
     EXPECT_EQ(levelAfterGrowingBudget(std::min(0.99, 1.0 - share + 0.02)), 1);
+}
+
+// An object whose levels are `boxes[k]` boxes (12 triangles each), at `position`.
+scenes::Object boxStack(const std::string& name, glm::vec3 position, const std::vector<int>& boxes) {
+    scenes::Object object;
+    object.name = name;
+    object.transform = glm::translate(glm::mat4(1.0f), position);
+    for (int count : boxes) {
+        scenes::MeshBuilder builder;
+        for (int i = 0; i < count; ++i) builder.addBox(glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(1.0f));
+        scenes::Level level;
+        level.meshes.push_back(builder.finish());
+        object.levels.push_back(std::move(level));
+    }
+    return object;
+}
+
+// Two objects whose steps are too coarse for raising alone: A (near, important) 33/25/1 boxes,
+// B (far) 25/21/1, budget 600 triangles. Lowering B for the budget leaves A0 + B2 = 408 (68%);
+// B1 does not fit beside A0 (648). Exchanging A0 -> A1 for B2 -> B1 gives 552 (92%), in the band.
+TEST(SwitchControl, ExchangeBringsAFrameIntoTheBandWhereNoSingleRaiseFits) {
+    scenes::Scene scene;
+    scene.name = "coarse steps";
+    scene.objects.push_back(boxStack("A", glm::vec3(0.0f, 0.0f, 0.0f), {33, 25, 1}));
+    scene.objects.push_back(boxStack("B", glm::vec3(0.0f, 0.0f, -30.0f), {25, 21, 1}));
+    scenes::updateStatistics(scene);
+    ASSERT_EQ(scene.objects[0].levels[0].stats.triangles, 396);
+    const SceneIndex index(scene, 96, 96, FeatureMode::Bounds);
+    constexpr double kMsPerTriangle = 1e-3;
+    const scenes::Camera camera = testing::lookAt(glm::vec3(0.0f, 2.0f, 10.0f), glm::vec3(0.0f, 1.0f, -15.0f));
+    auto decideTwice = [&](double refillBelow) {
+        SchedulerParameters p;
+        p.coefficients.thresholds.values = {1000.0, 2000.0};  // by distance: level 0
+        p.switchControl.refillBelow = refillBelow;
+        p.budgetMs = 600 * kMsPerTriangle;
+        FrameScheduler scheduler(index, testing::triangleModel(0.0, kMsPerTriangle), p);
+        std::vector<FrameDecision> decisions;
+        decisions.push_back(scheduler.decide(camera, 0.0));
+        decisions.push_back(scheduler.decide(camera, 1.0 / 30.0));
+        return decisions;
+    };
+    const std::vector<FrameDecision> never = decideTwice(0.0);
+    ASSERT_EQ(never[0].visibleObjects, 2);
+    EXPECT_EQ(never[0].levels, (scenes::Combination{0, 2}));
+    EXPECT_NEAR(never[0].predictedMs, 408 * kMsPerTriangle, 1e-9);
+    for (const FrameDecision& d : decideTwice(0.1)) {
+        EXPECT_EQ(d.levels, (scenes::Combination{1, 1}));
+        EXPECT_NEAR(d.predictedMs, 552 * kMsPerTriangle, 1e-9);
+        EXPECT_TRUE(d.budgetMet);
+    }
+    // The second frame holds the exchanged levels: no switch back and forth.
+    EXPECT_EQ(decideTwice(0.1)[1].switches, 0);
 }
 
 TEST(SwitchControl, RefillRejectsBadValues) {

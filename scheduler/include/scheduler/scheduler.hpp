@@ -163,6 +163,7 @@ private:
     void decideFlat();
     // The flat decision (DONG15 lowering and raising), with the hysteresis passes or without.
     void decideFlatLevels(bool hysteresis);
+    void exchangeTowardBudget(double bandFloor);
     void decideTiles();
     void applySwitchControl();
     // After the control's filter left budget over: raises objects in decreasing importance

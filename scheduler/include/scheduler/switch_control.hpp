@@ -5,7 +5,8 @@
 // none (objects entering the view; going back to last frame's level) and makes a new raise
 // only within (1 − raiseMargin) of the budget, so that an object raised into spare budget is
 // not lowered again as soon as the frame costs a little more; a frame the margin leaves
-// under (1 − refillBelow) of the budget may switch into the whole budget. Nothing is held
+// under (1 − refillBelow) of the budget may switch into the whole budget, exchanging levels
+// between objects where raising alone does not reach that far. Nothing is held
 // against the budget, so it never forces switches or freezes objects (docs/scheduler.md, Goal 4).
 //
 // SwitchRule::Vmi20, distance-dependent (VMI20 §7, method.md §7): an object changes level only
@@ -47,9 +48,11 @@ struct SwitchControlParameters {
     double raiseMargin = 0.05;  // [0, 1): Hysteresis: new raises only within (1 − margin) · budget
     // [0, 1): Hysteresis: a frame still predicted under (1 − refillBelow) · budget after the
     // margin-limited raise raises again with the whole budget, switches allowed, and if still
-    // under takes the decision without switch control when that is nearer the budget, so that
-    // the control does not keep a frame out of Goal 1's ±10% band when switches would bring it
-    // in (a three-object scene's coarse steps land there often). 0: never.
+    // under takes the decision without switch control when that is nearer the budget, then
+    // exchanges levels between objects (one finer, the least important others coarser) while
+    // that comes nearer, so that neither the control nor raising alone keeps a frame out of
+    // Goal 1's ±10% band when switches would bring it in (a three-object scene's coarse steps
+    // land there often). A first frame, with nothing to hold, gets the exchanges. 0: never.
     double refillBelow = 0.1;
     // Vmi20 only:
     double delta1 = 1.0;        // > 0: Δrate bound at (dist − near) = 1
