@@ -237,6 +237,10 @@ double FrameScheduler::lowerToBudget(double ms, LowerLimit limit) {
             case LowerLimit::SwitchRange:
                 return mRange[o].coarsest;
             case LowerLimit::WithoutSwitch:
+                // Only objects with I <= 1 are held back to spare a switch: holding the important
+                // ones at last frame's coarser level, to lower none beyond its own, cost the city
+                // 1.7% of fitness against no control (docs/scheduler.md, Goal 4).
+                if (mImportance[o] > 1.0) return d.levels[o];
                 if (mPrevious[o] != scenes::kNotDrawn) return mPrevious[o];
                 break;
             case LowerLimit::Coarsest:

@@ -280,6 +280,35 @@ TEST(SwitchControl, ExchangeBringsAFrameIntoTheBandWhereNoSingleRaiseFits) {
     EXPECT_EQ(decideTwice(0.1)[1].switches, 0);
 }
 
+// Two like objects, A and B, 30 apart; 700 triangles fit one at level 0 beside the other at
+// level 1 (696), not both at level 0 (792). Frame 0 looks from beside B, so A, the less
+// important, is drawn at level 1; frame 1 from beside A, which is now the important one. To spare
+// a switch the hysteresis could leave A at level 1 and B at 0; it lowers B instead, by importance.
+TEST(SwitchControl, HysteresisDoesNotHoldAnImportantObjectCoarseToSpareASwitch) {
+    scenes::Scene scene;
+    scene.name = "turning";
+    scene.objects.push_back(boxStack("A", glm::vec3(0.0f, 0.0f, 0.0f), {33, 25, 1}));
+    scene.objects.push_back(boxStack("B", glm::vec3(0.0f, 0.0f, -30.0f), {33, 25, 1}));
+    scenes::updateStatistics(scene);
+    const SceneIndex index(scene, 96, 96, FeatureMode::Bounds);
+    constexpr double kMsPerTriangle = 1e-3;
+    SchedulerParameters p;
+    p.coefficients.thresholds.values = {1000.0, 2000.0};  // by distance: level 0
+    p.budgetMs = 700 * kMsPerTriangle;
+    FrameScheduler scheduler(index, testing::triangleModel(0.0, kMsPerTriangle), p);
+    const scenes::Camera besideB = testing::lookAt(glm::vec3(0.0f, 2.0f, -40.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+    const scenes::Camera besideA = testing::lookAt(glm::vec3(0.0f, 2.0f, 10.0f), glm::vec3(0.0f, 1.0f, -30.0f));
+    const FrameDecision& first = scheduler.decide(besideB, 0.0);
+    ASSERT_EQ(first.visibleObjects, 2);
+    ASSERT_EQ(first.levels, (scenes::Combination{1, 0}));
+    ASSERT_LE(scheduler.importances()[0], 1.0);
+    const FrameDecision& second = scheduler.decide(besideA, 1.0 / 30.0);
+    ASSERT_GT(scheduler.importances()[0], 1.0);
+    ASSERT_LE(scheduler.importances()[1], 1.0);
+    EXPECT_EQ(second.levels, (scenes::Combination{0, 1}));
+    EXPECT_NEAR(second.predictedMs, 696 * kMsPerTriangle, 1e-9);
+}
+
 TEST(SwitchControl, RefillRejectsBadValues) {
     SwitchControlParameters p;
     p.refillBelow = 1.0;

@@ -180,7 +180,7 @@ private:
     // How far lowerToBudget may take an object: its coarsest level; its switch-control limit
     // (VMI20 filter); or, for the hysteresis rule before the DONG15 lowering, only as far as
     // it costs no switch (an object entering the view to any level, one drawn coarser last
-    // frame back to that level).
+    // frame back to that level), and objects with I <= 1 only.
     enum class LowerLimit { Coarsest, SwitchRange, WithoutSwitch };
     // Lowers objects in Work::order (I <= 1 first when protecting) until the prediction fits,
     // each at most to `limit`.
