@@ -12,9 +12,7 @@ out=${1:-out/scheduler-goal1}
 lodopt=${LODOPT:-build/cli/lodopt}
 python=${PYTHON:-/usr/bin/python3}
 mkdir -p "$out"
-"$python" -c 'import json, math, sys
-p = [(250 - 215 * t, 45 - 36 * t, math.radians(135 + 270 * t)) for t in (f / 299 for f in range(300))]
-json.dump({"name": "approach", "frames_per_second": 30, "frames": [{"position": [r * math.cos(a), h, r * math.sin(a)], "target": [0, 4, 0], "near": 0.5, "far": 1500} for r, h, a in p]}, open(sys.argv[1], "w"))' "$out/harbor_approach.json"
+"$python" scripts/harbor_approach.py "$out/harbor_approach.json"
 for entry in "harbor:8:1:--path $out/harbor_approach.json" forest:30:4: city:60:4:; do
   IFS=: read -r scene budget stride path <<< "$entry"
   "$lodopt" calibrate --scene "$scene" --out "$out/$scene.json" --quiet --json > "$out/$scene-calibration.json"

@@ -243,15 +243,21 @@ scenes::Object boxStack(const std::string& name, glm::vec3 position, const std::
     return object;
 }
 
+// A at the origin and B 30 behind it, levels as box counts (boxStack), indexed at 96x96.
+scenes::Scene twoStacks(const std::vector<int>& aBoxes, const std::vector<int>& bBoxes) {
+    scenes::Scene scene;
+    scene.name = "two stacks";
+    scene.objects.push_back(boxStack("A", glm::vec3(0.0f, 0.0f, 0.0f), aBoxes));
+    scene.objects.push_back(boxStack("B", glm::vec3(0.0f, 0.0f, -30.0f), bBoxes));
+    scenes::updateStatistics(scene);
+    return scene;
+}
+
 // Two objects whose steps are too coarse for raising alone: A (near, important) 33/25/1 boxes,
 // B (far) 25/21/1, budget 600 triangles. Lowering B for the budget leaves A0 + B2 = 408 (68%);
 // B1 does not fit beside A0 (648). Exchanging A0 -> A1 for B2 -> B1 gives 552 (92%), in the band.
 TEST(SwitchControl, ExchangeBringsAFrameIntoTheBandWhereNoSingleRaiseFits) {
-    scenes::Scene scene;
-    scene.name = "coarse steps";
-    scene.objects.push_back(boxStack("A", glm::vec3(0.0f, 0.0f, 0.0f), {33, 25, 1}));
-    scene.objects.push_back(boxStack("B", glm::vec3(0.0f, 0.0f, -30.0f), {25, 21, 1}));
-    scenes::updateStatistics(scene);
+    const scenes::Scene scene = twoStacks({33, 25, 1}, {25, 21, 1});
     ASSERT_EQ(scene.objects[0].levels[0].stats.triangles, 396);
     const SceneIndex index(scene, 96, 96, FeatureMode::Bounds);
     constexpr double kMsPerTriangle = 1e-3;
@@ -285,11 +291,7 @@ TEST(SwitchControl, ExchangeBringsAFrameIntoTheBandWhereNoSingleRaiseFits) {
 // important, is drawn at level 1; frame 1 from beside A, which is now the important one. To spare
 // a switch the hysteresis could leave A at level 1 and B at 0; it lowers B instead, by importance.
 TEST(SwitchControl, HysteresisDoesNotHoldAnImportantObjectCoarseToSpareASwitch) {
-    scenes::Scene scene;
-    scene.name = "turning";
-    scene.objects.push_back(boxStack("A", glm::vec3(0.0f, 0.0f, 0.0f), {33, 25, 1}));
-    scene.objects.push_back(boxStack("B", glm::vec3(0.0f, 0.0f, -30.0f), {33, 25, 1}));
-    scenes::updateStatistics(scene);
+    const scenes::Scene scene = twoStacks({33, 25, 1}, {33, 25, 1});
     const SceneIndex index(scene, 96, 96, FeatureMode::Bounds);
     constexpr double kMsPerTriangle = 1e-3;
     SchedulerParameters p;
