@@ -305,8 +305,7 @@ void FrameScheduler::exchangeTowardBudget(double bandFloor) {
     Work& w = *mWork;
     FrameDecision& d = mDecision;
     const double budget = mParameters.budgetMs;
-    sortByImportance(false);
-    double ms = estimate(d.features);
+    double ms = estimate(d.features);  // w.order: decreasing importance (decideFlatLevels)
     // Each accepted exchange raises the prediction, so this ends; the trials' cap bounds the
     // decision time where many objects are visible (a trial that cannot be paid for walks all).
     constexpr int kMaxTrials = 64;
