@@ -8,19 +8,13 @@
 #include <limits>
 #include <tuple>
 
-#include "gl_common.hpp"
 #include "frame_timer.hpp"
+#include "gl_common.hpp"
 #include "pbr_pass.hpp"
 #include "shaders.hpp"
 
 namespace lodopt::renderer {
 namespace {
-
-double processCpuMs() {
-    timespec now{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-    return double(now.tv_sec) * 1e3 + double(now.tv_nsec) * 1e-6;
-}
 
 // The pixels (top-left origin) where `object` at `level` can put fragments: the rectangle of
 // its vertices' projections, grown by 2 pixels (rasterization rules, the vertex shader's own

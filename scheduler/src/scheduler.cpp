@@ -285,16 +285,11 @@ void FrameScheduler::decideFlat() {
         for (int o : w.order) raiseWhileFits(o, 0, budget);  // w.order: decreasing importance
         const double raised = estimate(d.features);
         if (raised >= bandFloor) return;
-        w.heldLevels.assign(d.levels.begin(), d.levels.end());
-        w.heldFeatures = d.features;
+        w.held.save(d);
         decideFlatLevels(false);
-        if (estimate(d.features) <= raised) {
-            std::copy(w.heldLevels.begin(), w.heldLevels.end(), d.levels.begin());
-            d.features = w.heldFeatures;
-        }
-        if (estimate(d.features) >= bandFloor) return;
+        if (estimate(d.features) <= raised) w.held.restore(d);
     }
-    exchangeTowardBudget(bandFloor);
+    exchangeTowardBudget(bandFloor);  // nothing to do if the frame is in the band already
 }
 
 // One level finer for one object, paid for by coarser levels of the least important others,
@@ -316,8 +311,7 @@ void FrameScheduler::exchangeTowardBudget(double bandFloor) {
             const int raisedObject = w.order[i];
             if (d.levels[raisedObject] == scenes::kNotDrawn || d.levels[raisedObject] == 0) continue;
             ++trials;
-            w.exchangeLevels.assign(d.levels.begin(), d.levels.end());
-            w.exchangeFeatures = d.features;
+            w.beforeExchange.save(d);
             setLevel(raisedObject, d.levels[raisedObject] - 1);
             double trial = estimate(d.features);
             // Paid for by the least important objects first.
@@ -333,8 +327,7 @@ void FrameScheduler::exchangeTowardBudget(double bandFloor) {
                 ms = trial;
                 exchanged = true;
             } else {
-                std::copy(w.exchangeLevels.begin(), w.exchangeLevels.end(), d.levels.begin());
-                d.features = w.exchangeFeatures;
+                w.beforeExchange.restore(d);
             }
         }
     }

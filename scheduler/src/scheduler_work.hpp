@@ -1,11 +1,27 @@
 // Scratch buffers of one FrameScheduler, kept between frames so a decision does not allocate.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "scheduler/scheduler.hpp"
 
 namespace lodopt::scheduler {
+
+// A decision's levels and feature sums, kept to go back to (no allocation once reserved).
+struct SavedDecision {
+    std::vector<int> levels;
+    timemodel::FrameFeatures features;
+
+    void save(const FrameDecision& d) {
+        levels.assign(d.levels.begin(), d.levels.end());
+        features = d.features;
+    }
+    void restore(FrameDecision& d) const {
+        std::copy(levels.begin(), levels.end(), d.levels.begin());
+        d.features = features;
+    }
+};
 
 struct FrameScheduler::Work {
     std::vector<int> visible;          // visible objects (tiles: leaf by leaf, nearest leaf first)
@@ -16,10 +32,8 @@ struct FrameScheduler::Work {
     std::vector<double> denominators;  // per entry of `visible`
     std::vector<double> scratch;
     timemodel::FrameFeatures trial;
-    std::vector<int> heldLevels;  // the refill's hysteresis decision, kept for comparison
-    timemodel::FrameFeatures heldFeatures;
-    std::vector<int> exchangeLevels;  // the decision before a trial exchange
-    timemodel::FrameFeatures exchangeFeatures;
+    SavedDecision held;            // the refill's hysteresis decision, kept for comparison
+    SavedDecision beforeExchange;  // the decision before a trial exchange
 
     void reserve(std::size_t objects) {
         visible.reserve(objects);
@@ -28,8 +42,8 @@ struct FrameScheduler::Work {
         order.reserve(objects);
         denominators.reserve(objects);
         scratch.reserve(objects);
-        heldLevels.reserve(objects);
-        exchangeLevels.reserve(objects);
+        held.levels.reserve(objects);
+        beforeExchange.levels.reserve(objects);
     }
 };
 

@@ -125,7 +125,6 @@ LearnChoice chooseStatisticToLearn(const std::vector<ProfileSample>& samples, co
     return choice;
 }
 
-
 namespace {
 
 // The fitting samples learning from `statistic` (scaled) and the held-out ones measured by the median.

@@ -100,7 +100,6 @@ struct LearnChoice {
 // automatically: it is the work, not the frame's time.
 LearnChoice chooseStatisticToLearn(const std::vector<ProfileSample>& samples, const std::string& model);
 
-
 // The models learning from one statistic of a profile's samples, predicting the median.
 struct StatisticFit {
     std::string statistic;
