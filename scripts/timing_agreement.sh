@@ -2,25 +2,31 @@
 # What a profile predicts against what `render --time` measures (docs/timemodel.md "Measured
 # agreement"): per scene and calibration seed, one default `lodopt calibrate`, then COMBOS random
 # combinations (every object at a uniform level, a uniform named view; Python's random, seeded)
-# predicted by `lodopt estimate --profile` and timed by `lodopt render --time --repeats 40`.
+# predicted by `lodopt estimate --profile` and timed by `lodopt render --time --repeats 40`, in
+# RENDER_PASSES passes over the combinations (default 3; pass 1 in the combinations' order, later
+# passes shuffled), so that one slow spell of the machine does not decide a frame.
 #   scripts/timing_agreement.sh [SCENES] [SEEDS] [COMBOS] [OUT]
 #   defaults: "harbor forest city", "1 2 3", 24, out/timing-agreement
-# Prints one line per calibration (mean and p90 of |estimate - render| / render, the signed
-# mean, and what the calibration reported) and writes OUT/agreement.md. Run on a quiet machine.
+# Prints one line per calibration and writes OUT/agreement.md: what the calibration reported
+# (held-out error, drift between its passes), then |estimate - render| / render (mean and p90)
+# against the first pass's render --time (what one run of it gives) and against the median of
+# the passes, the signed mean, and how far render --time disagrees with itself (median over the
+# combinations of (greatest - least) / median of its passes). Run on a quiet machine.
 # Environment: LODOPT (default build/cli/lodopt), LODOPT_CALIBRATE_ARGS (more calibrate options).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scenes=${1:-harbor forest city}
 seeds=${2:-1 2 3}
 combos=${3:-24}
+render_passes=${RENDER_PASSES:-3}
 out=${4:-out/timing-agreement}
 lodopt=${LODOPT:-build/cli/lodopt}
 python=${PYTHON:-/usr/bin/python3}
 mkdir -p "$out"
 table="$out/agreement.md"
 {
-  echo "| scene | seed | learned from | calibration held-out mean / p90 | every viewpoint out mean / p90 | estimate vs render --time mean / p90 | signed mean |"
-  echo "|---|---|---|---|---|---|---|"
+  echo "| scene | seed | learned from | calibration held-out mean / p90 | every viewpoint out mean / p90 | pass drift | vs one render --time mean / p90 | vs median of the passes mean / p90 | signed mean | render --time spread |"
+  echo "|---|---|---|---|---|---|---|---|---|---|"
 } > "$table"
 for scene in $scenes; do
   "$lodopt" scene info --scene "$scene" --json > "$out/$scene-info.json"
@@ -43,31 +49,50 @@ PY
     while read -r view levels; do
       predicted=$("$lodopt" estimate --profile "$profile" --scene "$scene" --view "$view" --levels "$levels" --json |
         "$python" -c 'import json,sys; print(json.load(sys.stdin)["predicted_ms"])')
-      measured=$("$lodopt" render --scene "$scene" --view "$view" --levels "$levels" --time --repeats 40 \
-        --out "$out/frame.png" --json | "$python" -c 'import json,sys; print(json.load(sys.stdin)["render_ms"])')
-      printf '%s\t%s\t%s\t%s\n' "$view" "$levels" "$predicted" "$measured" >> "$rows"
+      printf '%s\t%s\t%s\n' "$view" "$levels" "$predicted" >> "$rows"
     done < "$out/$scene-$seed-combos.txt"
-    "$python" - "$scene" "$seed" "$out/$scene-$seed-calibration.json" "$rows" >> "$table" <<'PY'
-import json, sys
+    # One file per pass: line k is combination k's render --time.
+    for pass in $(seq 1 "$render_passes"); do
+      timed="$out/$scene-$seed-render-$pass.txt"
+      rm -f "$timed.tmp"
+      "$python" -c 'import random,sys; n=int(sys.argv[1]); p=int(sys.argv[2]); o=list(range(n))
+if p > 1: random.Random(p).shuffle(o)
+print("\n".join(map(str, o)))' "$(wc -l < "$rows")" "$pass" |
+        while read -r index; do
+          IFS=$'\t' read -r view levels _ < <(sed -n "$((index + 1))p" "$rows")
+          measured=$("$lodopt" render --scene "$scene" --view "$view" --levels "$levels" --time --repeats 40 \
+            --out "$out/frame.png" --json < /dev/null | "$python" -c 'import json,sys; print(json.load(sys.stdin)["render_ms"])')
+          printf '%s\t%s\n' "$index" "$measured" >> "$timed.tmp"
+        done
+      sort -n "$timed.tmp" | cut -f2 > "$timed"
+      rm -f "$timed.tmp"
+    done
+    "$python" - "$scene" "$seed" "$out/$scene-$seed-calibration.json" "$rows" "$out/$scene-$seed-render-"*.txt \
+      >> "$table" <<'PY'
+import json, statistics, sys
 scene, seed, calibration, rows = sys.argv[1:5]
+passes = [[float(v) for v in open(path)] for path in sys.argv[5:]]
 c = json.load(open(calibration))
 linear = next(m for m in c["models"] if m["name"] == "linear")
-errors, signed = [], []
-for line in open(rows):
-    view, levels, predicted, measured = line.split("\t")
-    p, m = float(predicted), float(measured)
-    errors.append(abs(p - m) / m)
-    signed.append((p - m) / m)
-errors.sort()
+predicted = [float(line.split("\t")[2]) for line in open(rows)]
 def q(values, f):
+    values = sorted(values)
     x = f * (len(values) - 1)
     i = int(x)
     return values[i] if i + 1 >= len(values) else values[i] + (x - i) * (values[i + 1] - values[i])
+def errors(measured):
+    return [abs(p - m) / m for p, m in zip(predicted, measured)]
+medians = [statistics.median(times) for times in zip(*passes)]
+first, of_medians = errors(passes[0]), errors(medians)
+signed = [(p - m) / m for p, m in zip(predicted, medians)]
+spread = [(max(t) - min(t)) / statistics.median(t) for t in zip(*passes)]
 h, r = linear["held_out_errors"], linear["rotated_held_out_errors"]
 pct = lambda v: f"{100 * v:.1f}"
+mp = lambda e: f"**{pct(sum(e) / len(e))} / {pct(q(e, 0.9))}**"
+drift = c.get("pass_drift")
 print(f"| {scene} | {seed} | {c['learned_from']} x {c['learned_scale']:.3f} | {pct(h['mean'])} / {pct(h['p90'])} | "
-      f"{pct(r['mean'])} / {pct(r['p90'])} | **{pct(sum(errors) / len(errors))} / {pct(q(errors, 0.9))}** | "
-      f"{pct(sum(signed) / len(signed))} |")
+      f"{pct(r['mean'])} / {pct(r['p90'])} | {'n/a' if drift is None else pct(drift)} | {mp(first)} | {mp(of_medians)} | "
+      f"{pct(sum(signed) / len(signed))} | {pct(statistics.median(spread))} |")
 PY
     tail -1 "$table"
   done

@@ -80,6 +80,14 @@ nlohmann::json modelsJson(const std::vector<timemodel::ModelResult>& models) {
     return entries;
 }
 
+std::vector<std::string> calibrationWarnings(const evaluation::CalibrationResult& run) {
+    std::vector<std::string> warnings;
+    if (run.profile.timing.passDrift > timemodel::kPassDriftWarning) {
+        warnings.push_back(timemodel::calibrationDriftWarning(run.profile.timing.passDrift));
+    }
+    return warnings;
+}
+
 nlohmann::json calibrationJson(const CalibrateOptions& options, const evaluation::CalibrationResult& run) {
     const timemodel::DeviceProfile& profile = run.profile;
     nlohmann::json choiceJson = {{"judged_on", "fitting samples, every fitting viewpoint held out once"},
@@ -127,6 +135,11 @@ nlohmann::json calibrationJson(const CalibrateOptions& options, const evaluation
             {"timing_spread_p90", run.spread.p90},
             {"split_half_median", run.repeatability.median},
             {"split_half_p90", run.repeatability.p90},
+            {"pass_time_factors", run.passTimeFactors},
+            {"pass_drift", timing.passDrift},
+            {"anchor_view", timing.anchorView},
+            {"anchor_ms", timing.anchorMs},
+            {"warnings", calibrationWarnings(run)},
             {"seconds", timing.seconds},
             {"default_model", profile.defaultModel},
             {"models", modelsJson(profile.models)},
@@ -151,6 +164,22 @@ void printCalibration(const CalibrateOptions& options, const evaluation::Calibra
                   timing.repeatsPerRound, timing.warmup, 100.0 * run.spread.median, 100.0 * run.spread.p90,
                   100.0 * run.repeatability.median, 100.0 * run.repeatability.p90);
     std::cout << line;
+    if (!run.passTimeFactors.empty()) {
+        std::cout << "each pass's frame times against the run's:";
+        for (double factor : run.passTimeFactors) {
+            std::snprintf(line, sizeof line, " %.2f", factor);
+            std::cout << line;
+        }
+        std::snprintf(line, sizeof line, " (drift %.1f%%)\n", 100.0 * timing.passDrift);
+        std::cout << line;
+    }
+    if (timing.anchorMs > 0.0) {
+        std::snprintf(line, sizeof line,
+                      "speed anchor: view '%s' at the finest levels, %.3f ms (median over the passes; "
+                      "estimate --speed-probe times it again)\n",
+                      timing.anchorView.c_str(), timing.anchorMs);
+        std::cout << line;
+    }
     std::snprintf(line, sizeof line, "predicts: the median of a frame's draws; learned from %s x %.3f",
                   timing.learnedFrom.c_str(), timing.learnedScale);
     std::cout << line;
@@ -275,6 +304,7 @@ void runCalibrate(const CalibrateOptions& options) {
     evaluation::CalibrationResult run = evaluation::calibrateDevice(scene, renderer, plan, options.seed, settings, onSample);
     run.profile.sceneSeed = options.sceneSeed;
     timemodel::saveProfile(options.out, run.profile);
+    for (const std::string& warning : calibrationWarnings(run)) std::cerr << "lodopt: warning: " << warning << "\n";
     if (options.output.json) {
         printJson(calibrationJson(options, run));
         return;

@@ -1,8 +1,11 @@
 // lodopt estimate: the predicted render time of one combination from one view, from a device
 // profile (or the profile shipped for the built-in scenes), to check against `render --time`.
 #include <iostream>
+#include <optional>
+#include <stdexcept>
 
 #include "cli_common.hpp"
+#include "evaluation/device_timing.hpp"
 #include "renderer/renderer.hpp"
 #include "scenes/builtin.hpp"
 #include "timemodel/features.hpp"
@@ -22,6 +25,7 @@ struct EstimateOptions {
     BackendOptions backend;  // the context whose GL renderer and frame clock are compared with the profile's
     std::uint32_t seed = 1;
     bool noRendererCheck = false;
+    bool speedProbe = false;
     OutputOptions output;
 };
 
@@ -89,7 +93,22 @@ void runEstimate(const EstimateOptions& options) {
 
     const timemodel::FrameFeatures features =
         timemodel::computeFrameFeatures(scene, combination, scene.views[view], width, height);
-    const double predictedMs = model->estimateMs(features);
+    const double modelMs = model->estimateMs(features);
+    std::optional<evaluation::SpeedProbe> probe;
+    if (options.speedProbe) {
+        renderer::RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.shading = renderer::parseShading(shading);
+        options.backend.applyTo(settings);
+        renderer::Renderer renderer(scene, settings);
+        try {
+            probe = evaluation::probeSpeed(scene, renderer, profile);
+        } catch (const std::invalid_argument& error) {
+            throw UsageError(std::string("--speed-probe: ") + error.what());
+        }
+    }
+    const double predictedMs = probe ? modelMs * probe->ratio : modelMs;
 
     for (const std::string& w : warnings) std::cerr << "lodopt: warning: " << source << ": " << w << "\n";
     if (options.output.json) {
@@ -104,12 +123,23 @@ void runEstimate(const EstimateOptions& options) {
                    {"model", model->name()},
                    {"profile", source},
                    {"predicted_ms", predictedMs},
+                   {"model_ms", modelMs},
+                   {"speed_probe", probe ? nlohmann::json{{"view", probe->view},
+                                                          {"anchor_ms", probe->anchorMs},
+                                                          {"probe_ms", probe->probeMs},
+                                                          {"ratio", probe->ratio}}
+                                         : nlohmann::json(nullptr)},
                    {"features", featureJson},
                    {"warnings", warnings}});
         return;
     }
     std::cout << "predicted_ms " << predictedMs << " (" << model->name() << " model, " << source << "; " << scene.name
               << ", view '" << scene.views[view].name << "', " << width << "x" << height << ", " << shading << ")\n";
+    if (probe) {
+        std::cout << "speed probe: view '" << probe->view << "' at the finest levels took " << probe->probeMs
+                  << " ms now, " << probe->anchorMs << " ms in the calibration: the model's " << modelMs << " ms x "
+                  << probe->ratio << "\n";
+    }
 }
 
 }  // namespace
@@ -131,6 +161,9 @@ void addEstimateCommand(CLI::App& app) {
     addSceneSeedOption(*command, options->seed);
     command->add_flag("--no-renderer-check", options->noRendererCheck,
                       "Do not open an OpenGL context to compare the renderer with the profile's");
+    command->add_flag("--speed-probe", options->speedProbe,
+                      "Time the profile's speed anchor now and scale the prediction by how much faster or slower "
+                      "the machine draws than during the calibration");
     addOutputOptions(*command, options->output);
     command->callback([options] { runEstimate(*options); });
 }

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <stdexcept>
 
+#include "scenes/scene.hpp"
 #include "timemodel/features.hpp"
 
 namespace lodopt::evaluation {
@@ -18,10 +19,24 @@ double medianOr0(const std::vector<double>& values) {
     return values.empty() ? 0.0 : timemodel::median(values);
 }
 
-// Every sample timed in passes; returns the pass count.
-int timePasses(renderer::Renderer& renderer, const timemodel::CalibrationPlan& plan,
+struct SpeedAnchor {
+    scenes::Combination combination;
+    scenes::Camera camera;
+};
+
+// The frame a profile's speed is anchored to: the scene's first view, every object at its
+// finest level (what `render --view 0` draws by default).
+constexpr int kAnchorView = 0;
+SpeedAnchor speedAnchor(const scenes::Scene& scene) {
+    if (scene.views.empty()) throw std::runtime_error("scene '" + scene.name + "' has no view to anchor the timing to");
+    return {scenes::referenceCombination(scene), scene.views[kAnchorView]};
+}
+
+// Every sample timed in passes, each pass opened by the speed anchor (`anchorMs` gets its median
+// per pass); returns the pass count.
+int timePasses(renderer::Renderer& renderer, const timemodel::CalibrationPlan& plan, const SpeedAnchor& anchor,
                const CalibrationSettings& settings, const CalibrationProgress& progress,
-               std::vector<timemodel::PassTimes>& timings) {
+               std::vector<timemodel::PassTimes>& timings, std::vector<double>& anchorMs) {
     const std::size_t count = plan.samples.size();
     timings.assign(count, {});
     timemodel::SplitMix64 shuffle(settings.seed ^ 0xC0FFEEull);
@@ -33,6 +48,8 @@ int timePasses(renderer::Renderer& renderer, const timemodel::CalibrationPlan& p
                                         secondsSince(settings.start) + slowestPass <= settings.timeBudgetSeconds)) {
         const double passStart = secondsSince(settings.start);
         for (std::size_t i = count; i > 1; --i) std::swap(order[i - 1], order[std::size_t(shuffle.below(int(i)))]);
+        anchorMs.push_back(
+            renderer.timeFrames(anchor.combination, anchor.camera, settings.repeats, settings.warmup).median());
         std::size_t done = 0;
         for (std::size_t index : order) {
             const timemodel::PlannedSample& planned = plan.samples[index];
@@ -54,6 +71,38 @@ int timePasses(renderer::Renderer& renderer, const timemodel::CalibrationPlan& p
 
 }  // namespace
 
+SpeedProbe probeSpeed(const scenes::Scene& scene, renderer::Renderer& renderer, const timemodel::DeviceProfile& profile,
+                      int repeats, int warmup) {
+    const timemodel::TimingSettings& timing = profile.timing;
+    if (!(timing.anchorMs > 0.0) || timing.anchorView.empty()) {
+        throw std::invalid_argument("the profile has no speed anchor (written before calibrations recorded one): "
+                                    "calibrate again to probe the machine's speed");
+    }
+    if (profile.scene != scene.name) {
+        throw std::invalid_argument("the profile's speed anchor is a frame of scene '" + profile.scene + "', not '" +
+                                    scene.name + "'");
+    }
+    const renderer::RenderSettings& settings = renderer.settings();
+    if (settings.width != profile.width || settings.height != profile.height ||
+        renderer::shadingName(settings.shading) != profile.shading) {
+        throw std::invalid_argument("the speed anchor was timed at " + std::to_string(profile.width) + "x" +
+                                    std::to_string(profile.height) + " " + profile.shading +
+                                    "; probe it at the same size and shading");
+    }
+    const auto view = std::find_if(scene.views.begin(), scene.views.end(),
+                                   [&](const scenes::Camera& camera) { return camera.name == timing.anchorView; });
+    if (view == scene.views.end()) {
+        throw std::invalid_argument("the profile's speed anchor is view '" + timing.anchorView + "', which scene '" +
+                                    scene.name + "' does not have");
+    }
+    SpeedProbe probe;
+    probe.view = timing.anchorView;
+    probe.anchorMs = timing.anchorMs;
+    probe.probeMs = renderer.timeFrames(scenes::referenceCombination(scene), *view, repeats, warmup).median();
+    probe.ratio = probe.probeMs / probe.anchorMs;
+    return probe;
+}
+
 CalibrationResult calibrateDevice(const scenes::Scene& scene, renderer::Renderer& renderer,
                                   const timemodel::CalibrationPlan& plan, std::uint64_t planSeed,
                                   const CalibrationSettings& settings, const CalibrationProgress& progress) {
@@ -64,7 +113,8 @@ CalibrationResult calibrateDevice(const scenes::Scene& scene, renderer::Renderer
         tables.emplace_back(scene, viewpoint.camera, renderSettings.width, renderSettings.height);
     }
     std::vector<timemodel::PassTimes> timings;
-    const int passes = timePasses(renderer, plan, settings, progress, timings);
+    std::vector<double> anchorMs;
+    const int passes = timePasses(renderer, plan, speedAnchor(scene), settings, progress, timings, anchorMs);
     const std::size_t count = plan.samples.size();
 
     CalibrationResult result;
@@ -121,6 +171,7 @@ CalibrationResult calibrateDevice(const scenes::Scene& scene, renderer::Renderer
         plan.viewpoints.begin(), plan.viewpoints.end(), [](const timemodel::Viewpoint& v) { return v.heldOut; }));
     result.spread = timemodel::summarizeErrors(spreads);
     result.repeatability = timemodel::splitHalfRepeatability(timemodel::kPredictedStatistic, timings, heldOut);
+    result.passTimeFactors = timemodel::passTimeFactors(timings);
     timemodel::TimingSettings& timing = profile.timing;
     timing.frameClock = renderer::frameClockName(renderer.frameClock());
     timing.rounds = passes;
@@ -130,6 +181,9 @@ CalibrationResult calibrateDevice(const scenes::Scene& scene, renderer::Renderer
     timing.p90Spread = result.spread.p90;
     timing.splitHalfMedian = result.repeatability.median;
     timing.splitHalfP90 = result.repeatability.p90;
+    timing.passDrift = timemodel::passDrift(result.passTimeFactors);
+    timing.anchorView = scene.views[kAnchorView].name;
+    timing.anchorMs = medianOr0(anchorMs);
     timing.seconds = secondsSince(settings.start);
     return result;
 }

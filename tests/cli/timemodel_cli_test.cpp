@@ -120,6 +120,20 @@ TEST_F(TimeModelCli, CalibrateFitsEveryModelAndWritesAProfile) {
     EXPECT_GE(report["split_half_p90"].get<double>(), halfMedian);
     EXPECT_DOUBLE_EQ(profile.timing.splitHalfMedian, halfMedian);
     EXPECT_DOUBLE_EQ(profile.timing.splitHalfP90, report["split_half_p90"].get<double>());
+    // Each pass's speed against the run's, their drift recorded in the profile, and a warning
+    // exactly when the drift passes the threshold.
+    ASSERT_EQ(report["pass_time_factors"].size(), 2u) << report["pass_time_factors"];
+    const double drift = report["pass_drift"].get<double>();
+    EXPECT_GE(drift, 0.0);
+    EXPECT_DOUBLE_EQ(profile.timing.passDrift, drift);
+    const bool warned = report["warnings"].size() == 1 &&
+                        report["warnings"][0].get<std::string>().find("between the calibration's passes") !=
+                            std::string::npos;
+    EXPECT_EQ(warned, drift > lodopt::timemodel::kPassDriftWarning) << report["warnings"];
+    // The speed anchor: view 0 at the finest levels, recorded for `estimate --speed-probe`.
+    EXPECT_EQ(report["anchor_view"], "overview");
+    EXPECT_GT(report["anchor_ms"].get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(profile.timing.anchorMs, report["anchor_ms"].get<double>());
 }
 
 TEST_F(TimeModelCli, CalibrateLearnsFromTheStatisticItIsGivenAndStillPredictsTheMedian) {
@@ -183,6 +197,27 @@ TEST_F(TimeModelCli, EstimateFromTheProfilePredictsEveryModel) {
         EXPECT_EQ(other["model"], model);
         EXPECT_TRUE(std::isfinite(other["predicted_ms"].get<double>()));
     }
+}
+
+TEST_F(TimeModelCli, EstimateSpeedProbeScalesThePredictionByTheAnchorsTimeNow) {
+    ASSERT_EQ(sCalibration.exitCode, 0);
+    const std::string asked = "--profile " + sProfile + " --scene harbor --view 1 --levels 0,2,1";
+    const nlohmann::json plain = estimate(asked);
+    const nlohmann::json probed = estimate(asked + " --speed-probe");
+    ASSERT_FALSE(plain.is_null());
+    ASSERT_FALSE(probed.is_null());
+    EXPECT_TRUE(plain["speed_probe"].is_null());
+    EXPECT_DOUBLE_EQ(plain["predicted_ms"].get<double>(), plain["model_ms"].get<double>());
+    EXPECT_DOUBLE_EQ(probed["model_ms"].get<double>(), plain["model_ms"].get<double>());
+    const nlohmann::json& probe = probed["speed_probe"];
+    const double ratio = probe["ratio"].get<double>();
+    EXPECT_GT(probe["probe_ms"].get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(probe["anchor_ms"].get<double>(), lodopt::timemodel::loadProfile(sProfile).timing.anchorMs);
+    EXPECT_DOUBLE_EQ(ratio, probe["probe_ms"].get<double>() / probe["anchor_ms"].get<double>());
+    EXPECT_DOUBLE_EQ(probed["predicted_ms"].get<double>(), plain["model_ms"].get<double>() * ratio);
+    // The anchor is the profile's frame: not another size, not another scene.
+    estimate("--profile " + sProfile + " --size 128x96 --speed-probe", 2);
+    estimate("--profile " + sProfile + " --scene forest --speed-probe", 2);
 }
 
 TEST_F(TimeModelCli, EstimateWarnsWhenFramesWouldBeTimedOnAnotherClock) {

@@ -55,6 +55,13 @@ TEST(DeviceTiming, CalibrationTimesEverySampleInEveryPassAndFitsTheProfile) {
     // The least of a frame's draws is never above their median: the scale lifts it to the median.
     EXPECT_GE(profile.timing.learnedScale, 1.0);
     EXPECT_EQ(profile.timing.rounds, 2);
+    // One factor per pass, around 1 (two passes: their medians' mean), and their spread recorded.
+    ASSERT_EQ(run.passTimeFactors.size(), 2u);
+    for (double factor : run.passTimeFactors) EXPECT_GT(factor, 0.0);
+    EXPECT_DOUBLE_EQ(profile.timing.passDrift, timemodel::passDrift(run.passTimeFactors));
+    // The speed anchor: the first view at the finest levels, timed in every pass.
+    EXPECT_EQ(profile.timing.anchorView, scene.views[0].name);
+    EXPECT_GT(profile.timing.anchorMs, 0.0);
     EXPECT_EQ(profile.width, 64);
     EXPECT_EQ(profile.shading, renderer::shadingName(renderer::kDefaultShading));
     EXPECT_EQ(profile.scene, scene.name);
@@ -93,4 +100,42 @@ TEST(DeviceTiming, CalibrationTimesEverySampleInEveryPassAndFitsTheProfile) {
     // The profile reads back and yields a model.
     const timemodel::DeviceProfile read = timemodel::profileFromJson(timemodel::profileToJson(profile), "test");
     EXPECT_NE(timemodel::modelFromProfile(read), nullptr);
+}
+
+TEST(DeviceTiming, SpeedProbeTimesTheAnchorAgainAndRefusesWhatItCannotCompare) {
+    const scenes::Scene scene = scenes::makeHarborScene();
+    renderer::Renderer renderer(scene, smallSettings());
+    timemodel::DeviceProfile profile;
+    profile.scene = scene.name;
+    profile.width = profile.height = 64;
+    profile.shading = renderer::shadingName(renderer::kDefaultShading);
+    profile.timing.anchorView = scene.views[0].name;
+    profile.timing.anchorMs = 1000.0;  // a machine far slower than any this runs on
+    const evaluation::SpeedProbe probe = evaluation::probeSpeed(scene, renderer, profile, 3, 1);
+    EXPECT_EQ(probe.view, scene.views[0].name);
+    EXPECT_EQ(probe.anchorMs, 1000.0);
+    EXPECT_GT(probe.probeMs, 0.0);
+    EXPECT_LT(probe.probeMs, 1000.0);  // a 64x64 harbor frame
+    EXPECT_DOUBLE_EQ(probe.ratio, probe.probeMs / 1000.0);
+
+    const auto refused = [&](timemodel::DeviceProfile changed, const std::string& expected) {
+        try {
+            evaluation::probeSpeed(scene, renderer, changed, 1, 0);
+            ADD_FAILURE() << "probed: " << expected;
+        } catch (const std::invalid_argument& error) {
+            EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
+        }
+    };
+    timemodel::DeviceProfile older = profile;
+    older.timing.anchorMs = 0.0;
+    refused(older, "no speed anchor");
+    timemodel::DeviceProfile otherScene = profile;
+    otherScene.scene = "forest";
+    refused(otherScene, "scene 'forest'");
+    timemodel::DeviceProfile otherSize = profile;
+    otherSize.width = 512;
+    refused(otherSize, "512x64");
+    timemodel::DeviceProfile otherView = profile;
+    otherView.timing.anchorView = "nowhere";
+    refused(otherView, "view 'nowhere'");
 }

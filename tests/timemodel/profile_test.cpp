@@ -175,6 +175,48 @@ TEST(Profile, WarnsWhenRendererSizeOrMachineDiffer) {
     ASSERT_EQ(clock.size(), 1u);
     EXPECT_NE(clock[0].find("gpu clock, this renderer on the wall clock"), std::string::npos) << clock[0];
     EXPECT_TRUE(timemodel::profileWarnings(gpu, profile.glRenderer, 512, 384, profile.machine, profile.shading, "gpu").empty());
+    // A profile calibrated while the machine's speed drifted: calibrate said so; its users do not.
+    timemodel::DeviceProfile drifted = profile;
+    drifted.timing.passDrift = 0.32;
+    EXPECT_TRUE(timemodel::profileWarnings(drifted, profile.glRenderer, 512, 384, profile.machine, profile.shading).empty());
+    EXPECT_NE(timemodel::calibrationDriftWarning(0.32).find("moved by 32% between the calibration's passes"),
+              std::string::npos);
+}
+
+TEST(Profile, RecordsThePassDriftAndTheSpeedAnchorAndReadsOlderFilesWithout) {
+    timemodel::DeviceProfile profile = sampleProfile();
+    profile.timing.passDrift = 0.125;
+    const std::string text = timemodel::profileToJson(profile);
+    EXPECT_EQ(timemodel::profileFromJson(text, "p.json").timing.passDrift, 0.125);
+    std::string older = text;
+    const std::string field = "\"pass_drift\": 0.125,";
+    const std::size_t at = older.find(field);
+    ASSERT_NE(at, std::string::npos) << text.substr(0, 1200);
+    older.erase(at, field.size());
+    EXPECT_EQ(timemodel::profileFromJson(older, "p.json").timing.passDrift, 0.0);
+    // The speed anchor likewise: recorded, and absent from older files.
+    profile.timing.anchorView = "overview";
+    profile.timing.anchorMs = 7.5;
+    const std::string anchored = timemodel::profileToJson(profile);
+    const timemodel::DeviceProfile read = timemodel::profileFromJson(anchored, "p.json");
+    EXPECT_EQ(read.timing.anchorView, "overview");
+    EXPECT_EQ(read.timing.anchorMs, 7.5);
+    std::string unanchored = anchored;
+    for (const std::string& field : {std::string("\"anchor_ms\": 7.5,"), std::string("\"anchor_view\": \"overview\",")}) {
+        const std::size_t where = unanchored.find(field);
+        ASSERT_NE(where, std::string::npos) << field;
+        unanchored.erase(where, field.size());
+    }
+    EXPECT_EQ(timemodel::profileFromJson(unanchored, "p.json").timing.anchorMs, 0.0);
+    EXPECT_TRUE(timemodel::profileFromJson(unanchored, "p.json").timing.anchorView.empty());
+    std::string negative = text;
+    negative.replace(negative.find("0.125"), 5, "-0.10");
+    try {
+        timemodel::profileFromJson(negative, "p.json");
+        ADD_FAILURE() << "a negative drift was read";
+    } catch (const timemodel::ProfileError& error) {
+        EXPECT_NE(std::string(error.what()).find("pass_drift"), std::string::npos) << error.what();
+    }
 }
 
 TEST(Profile, RecordsTheRasterizerThreadsAndReadsOlderFilesWithout) {

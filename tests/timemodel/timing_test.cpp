@@ -91,6 +91,28 @@ TEST(Timing, SplitHalfComparesTheEvenPassesWithTheOddOnes) {
     EXPECT_EQ(timemodel::splitHalfRepeatability("least", {passes({10.0})}, {true}).count, 0u);
 }
 
+TEST(Timing, PassFactorsShowAPassDuringWhichTheMachineWasSlower) {
+    // Three samples over four passes; pass 2 drew every frame 30% slower.
+    std::vector<timemodel::PassTimes> times(3);
+    const std::vector<double> base = {10.0, 20.0, 40.0};
+    const std::vector<double> pass = {1.0, 1.02, 1.3, 0.98};
+    for (std::size_t i = 0; i < times.size(); ++i) {
+        for (double factor : pass) times[i].median.push_back(base[i] * factor);
+    }
+    const std::vector<double> factors = timemodel::passTimeFactors(times);
+    ASSERT_EQ(factors.size(), 4u);
+    // Against each sample's median over the passes (the mean of 1.0 and 1.02 times its base).
+    for (std::size_t p = 0; p < pass.size(); ++p) EXPECT_NEAR(factors[p], pass[p] / 1.01, 1e-12) << p;
+    EXPECT_NEAR(timemodel::passDrift(factors), 1.3 / 0.98 - 1.0, 1e-12);
+    // A sample with a pass not timed (0) is left out; with none left, or none at all: no factors.
+    times.push_back({});
+    times.back().median = {0.0, 5.0, 5.0, 5.0};
+    EXPECT_EQ(timemodel::passTimeFactors(times).size(), 4u);
+    EXPECT_TRUE(timemodel::passTimeFactors({times.back()}).empty());
+    EXPECT_TRUE(timemodel::passTimeFactors({}).empty());
+    EXPECT_EQ(timemodel::passDrift({1.2}), 0.0);
+}
+
 TEST(Timing, LearnedScaleIsTheMedianRatioOfThePredictedToTheLearned) {
     EXPECT_DOUBLE_EQ(timemodel::learnedScale({10.0, 10.0, 20.0}, {11.0, 13.0, 24.0}), 1.2);  // 1.1, 1.3, 1.2
     EXPECT_DOUBLE_EQ(timemodel::learnedScale({10.0, 0.0}, {11.0, 5.0}), 1.1);                // 0: not recorded

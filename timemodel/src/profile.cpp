@@ -2,6 +2,7 @@
 #include "timemodel/profile.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
@@ -187,6 +188,9 @@ std::string profileToJson(const DeviceProfile& profile) {
             {"p90_spread", t.p90Spread},
             {"split_half_median", t.splitHalfMedian},
             {"split_half_p90", t.splitHalfP90},
+            {"pass_drift", t.passDrift},
+            {"anchor_view", t.anchorView},
+            {"anchor_ms", t.anchorMs},
             {"seconds", t.seconds}}}}},
         {"default_model", profile.defaultModel},
         {"models", models},
@@ -277,6 +281,15 @@ DeviceProfile profileFromJson(const std::string& text, const std::string& source
     if (timing.contains("split_half_median")) {
         profile.timing.splitHalfMedian = read.number(timing, "split_half_median", "calibration.timing");
         profile.timing.splitHalfP90 = read.number(timing, "split_half_p90", "calibration.timing");
+    }
+    if (timing.contains("anchor_ms")) {
+        profile.timing.anchorView = read.text(timing, "anchor_view", "calibration.timing");
+        profile.timing.anchorMs = read.number(timing, "anchor_ms", "calibration.timing");
+        if (!(profile.timing.anchorMs >= 0.0)) read.fail("calibration.timing.anchor_ms", "must be >= 0");
+    }
+    if (timing.contains("pass_drift")) {
+        profile.timing.passDrift = read.number(timing, "pass_drift", "calibration.timing");
+        if (!(profile.timing.passDrift >= 0.0)) read.fail("calibration.timing.pass_drift", "must be >= 0");
     }
     profile.defaultModel = read.text(document, "default_model", "document");
 
@@ -429,6 +442,15 @@ std::unique_ptr<TimeModel> modelFromProfile(const DeviceProfile& profile, const 
         return result;
     }
     throw ProfileError("profile has no model '" + wanted + "' (models: " + (known.empty() ? "none" : known) + ")");
+}
+
+std::string calibrationDriftWarning(double passDrift) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "the machine's speed moved by %.0f%% between the calibration's passes: its predictions carry that "
+                  "much uncertainty; calibrate again on a quiet machine",
+                  100.0 * passDrift);
+    return text;
 }
 
 std::vector<std::string> profileWarnings(const DeviceProfile& profile, const std::string& glRenderer, int width,

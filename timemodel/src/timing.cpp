@@ -54,6 +54,31 @@ double passSpread(const std::vector<double>& perPass) {
     return (*high - *low) / median(perPass);
 }
 
+std::vector<double> passTimeFactors(const std::vector<PassTimes>& times) {
+    if (times.empty()) return {};
+    const std::size_t passes = times.front().median.size();
+    std::vector<std::vector<double>> ratios(passes);
+    for (const PassTimes& t : times) {
+        if (t.median.size() != passes) continue;
+        const double all = median(t.median);
+        if (!(all > 0.0) || *std::min_element(t.median.begin(), t.median.end()) <= 0.0) continue;
+        for (std::size_t p = 0; p < passes; ++p) ratios[p].push_back(t.median[p] / all);
+    }
+    std::vector<double> factors;
+    factors.reserve(passes);
+    for (const std::vector<double>& r : ratios) {
+        if (r.empty()) return {};
+        factors.push_back(median(r));
+    }
+    return factors;
+}
+
+double passDrift(const std::vector<double>& factors) {
+    if (factors.size() < 2) return 0.0;
+    const auto [low, high] = std::minmax_element(factors.begin(), factors.end());
+    return *high / *low - 1.0;
+}
+
 ErrorStats splitHalfRepeatability(const std::string& statistic, const std::vector<PassTimes>& times,
                                   const std::vector<bool>& include) {
     assert(include.size() == times.size());

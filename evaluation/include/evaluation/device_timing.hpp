@@ -6,12 +6,16 @@
 // calibration times every planned sample (timemodel::planCalibration) in interleaved passes, a
 // fresh shuffled order per pass, so that a burst of load from elsewhere spreads over many
 // samples instead of ruining one: at least `rounds` passes, then more (up to `maxRounds`) while
-// the wall time since `start` plus the slowest pass so far stays within `timeBudgetSeconds`. It
+// the wall time since `start` plus the slowest pass so far stays within `timeBudgetSeconds`. Each
+// pass opens with the speed anchor (the scene's first view, every object at its finest level),
+// timed as a sample is, so that a later run can tell how fast the machine draws then (probeSpeed). It
 // then fits every time model to predict the median of a frame's draws (timemodel/timing.hpp),
 // learning from the statistic asked for (or, with timemodel::kAutoStatistic, the one that
 // predicted the median best with every fitting viewpoint held out once), holds every viewpoint
 // out once, and refits learning from the other statistics of the same draws, so that one run
-// shows how much of the error is the model and how much the clock.
+// shows how much of the error is the model and how much the clock. Each pass's speed against the
+// run's is recorded (passTimeFactors): a calibration during which the machine's speed moved
+// beyond timemodel::kPassDriftWarning says so, and so does every profile it writes.
 #pragma once
 
 #include <chrono>
@@ -53,6 +57,9 @@ struct CalibrationResult {
     std::vector<OtherStatisticFit> otherStatistics;
     timemodel::ErrorStats spread;         // between passes' medians, per sample
     timemodel::ErrorStats repeatability;  // split-half of the median, held-out samples
+    // Per pass, how slowly it drew against the run (timemodel::passTimeFactors), in pass order;
+    // profile.timing.passDrift is their spread. Empty after --refit (no pass timed).
+    std::vector<double> passTimeFactors;
     std::size_t fitSamples = 0, heldOutSamples = 0;
     int folds = 1;
 };
@@ -65,5 +72,22 @@ using CalibrationProgress = std::function<void(int pass, std::size_t done, std::
 CalibrationResult calibrateDevice(const scenes::Scene& scene, renderer::Renderer& renderer,
                                   const timemodel::CalibrationPlan& plan, std::uint64_t planSeed,
                                   const CalibrationSettings& settings, const CalibrationProgress& progress = {});
+
+// How much faster or slower the machine draws now than when `profile` was calibrated: its speed
+// anchor (timemodel::TimingSettings::anchorView / anchorMs, every object at its finest level)
+// timed again on `renderer` as `render --time` times a frame (`repeats` draws after `warmup`,
+// their median). A prediction of the profile times `ratio` is a prediction for the machine as it
+// is now: what the scheduler's feedback learns over frames, in one probe. On a shared machine
+// whose speed moves by tens of percent within minutes (docs/timemodel.md "Measured agreement"),
+// that offset dwarfs the model's error. Throws std::invalid_argument when the profile has no
+// anchor, is another scene's, or the renderer draws another size or shading than the profile's.
+struct SpeedProbe {
+    std::string view;
+    double anchorMs = 0.0;  // in the calibration
+    double probeMs = 0.0;   // now
+    double ratio = 1.0;     // probeMs / anchorMs
+};
+SpeedProbe probeSpeed(const scenes::Scene& scene, renderer::Renderer& renderer, const timemodel::DeviceProfile& profile,
+                      int repeats = 15, int warmup = 2);
 
 }  // namespace lodopt::evaluation

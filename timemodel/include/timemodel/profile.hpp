@@ -56,6 +56,16 @@ struct TimingSettings {
     // errors; 0 in profiles written before it was recorded, or with one pass.
     double splitHalfMedian = 0.0;
     double splitHalfP90 = 0.0;
+    // How far the machine's speed moved between passes (timing.hpp passDrift); 0 in profiles
+    // written before it was recorded, or with one pass.
+    double passDrift = 0.0;
+    // The speed anchor: the scene's view `anchorView` with every object at its finest level,
+    // timed at the start of every pass like a sample; anchorMs is the median over the passes of
+    // its medians. A later run times the same frame to learn how much faster or slower the
+    // machine draws now (evaluation::probeSpeed, `estimate --speed-probe`). Empty / 0 in
+    // profiles written before it was recorded.
+    std::string anchorView;
+    double anchorMs = 0.0;
 };
 
 struct ProfileSample {
@@ -114,6 +124,13 @@ std::unique_ptr<TimeModel> modelFromProfile(const DeviceProfile& profile, const 
 std::vector<std::string> profileWarnings(const DeviceProfile& profile, const std::string& glRenderer, int width,
                                          int height, const MachineDescription& machine, const std::string& shading,
                                          const std::string& frameClock = "");
+
+// Above this drift between passes (TimingSettings::passDrift) a calibration says the machine's
+// speed moved while it timed: a prediction carries that much uncertainty whatever the model.
+// Only `calibrate` says so, when the user can act on it; the profile keeps the figure.
+inline constexpr double kPassDriftWarning = 0.15;
+// The sentence `calibrate` gives for such a drift.
+std::string calibrationDriftWarning(double passDrift);
 
 // Scenes with a profile built into the library.
 std::vector<std::string> shippedProfileScenes();

@@ -71,6 +71,18 @@ double timeFromPasses(const std::string& statistic, const PassTimes& times);
 // Spread of `perPass` (non-empty, median > 0): (greatest − least) / median.
 double passSpread(const std::vector<double>& perPass);
 
+// How slowly each pass drew against the run as a whole: per pass, the median over the samples
+// of that pass's median ÷ the sample's median over all its passes (samples with a time <= 0 in
+// any pass are skipped). 1 is the run's typical speed; 1.2, a pass whose frames took 20% longer.
+// A machine whose speed moves between passes (another tenant, a clock governor) shows here
+// before it shows as model error. One factor per pass of the first sample; empty when there is
+// no sample or no pass.
+std::vector<double> passTimeFactors(const std::vector<PassTimes>& times);
+
+// (greatest factor ÷ least) − 1: how far the machine's speed moved between a run's passes; 0 for
+// fewer than two factors.
+double passDrift(const std::vector<double>& factors);
+
 // Split-half repeatability of `statistic` over the samples i with include[i] (include.size() ==
 // times.size()): |even − odd| / all per sample, summarized; samples with fewer than two passes
 // or a time ≤ 0 are skipped (count 0 when none is left).
