@@ -10,8 +10,9 @@
 # Prints one line per calibration and writes OUT/agreement.md: what the calibration reported
 # (held-out error, drift between its passes), then |estimate - render| / render (mean and p90)
 # against the first pass's render --time (what one run of it gives) and against the median of
-# the passes, the signed mean, and how far render --time disagrees with itself (median over the
-# combinations of (greatest - least) / median of its passes). Run on a quiet machine.
+# the passes, the signed mean, how far render --time disagrees with itself (median over the
+# combinations of (greatest - least) / median of its passes), and `estimate --speed-probe` (made
+# just before each render of the first pass) against that render. Run on a quiet machine.
 # Environment: LODOPT (default build/cli/lodopt), LODOPT_CALIBRATE_ARGS (more calibrate options).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,8 +26,8 @@ python=${PYTHON:-/usr/bin/python3}
 mkdir -p "$out"
 table="$out/agreement.md"
 {
-  echo "| scene | seed | learned from | calibration held-out mean / p90 | every viewpoint out mean / p90 | pass drift | vs one render --time mean / p90 | vs median of the passes mean / p90 | signed mean | render --time spread |"
-  echo "|---|---|---|---|---|---|---|---|---|---|"
+  echo "| scene | seed | learned from | calibration held-out mean / p90 | every viewpoint out mean / p90 | pass drift | vs one render --time mean / p90 | vs median of the passes mean / p90 | signed mean | render --time spread | --speed-probe vs one render --time mean / p90 |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$table"
 for scene in $scenes; do
   "$lodopt" scene info --scene "$scene" --json > "$out/$scene-info.json"
@@ -54,24 +55,30 @@ PY
     # One file per pass: line k is combination k's render --time.
     for pass in $(seq 1 "$render_passes"); do
       timed="$out/$scene-$seed-render-$pass.txt"
-      rm -f "$timed.tmp"
+      rm -f "$timed.tmp" "$out/$scene-$seed-probed.tmp"
       "$python" -c 'import random,sys; n=int(sys.argv[1]); p=int(sys.argv[2]); o=list(range(n))
 if p > 1: random.Random(p).shuffle(o)
 print("\n".join(map(str, o)))' "$(wc -l < "$rows")" "$pass" |
         while read -r index; do
           IFS=$'\t' read -r view levels _ < <(sed -n "$((index + 1))p" "$rows")
+          if [ "$pass" = 1 ]; then  # the same estimate with the machine's speed probed just before the render
+            "$lodopt" estimate --profile "$profile" --scene "$scene" --view "$view" --levels "$levels" --speed-probe \
+              --json < /dev/null | "$python" -c 'import json,sys; print(json.load(sys.stdin)["predicted_ms"])' \
+              >> "$out/$scene-$seed-probed.tmp"
+          fi
           measured=$("$lodopt" render --scene "$scene" --view "$view" --levels "$levels" --time --repeats 40 \
             --out "$out/frame.png" --json < /dev/null | "$python" -c 'import json,sys; print(json.load(sys.stdin)["render_ms"])')
           printf '%s\t%s\n' "$index" "$measured" >> "$timed.tmp"
         done
+      if [ "$pass" = 1 ]; then mv "$out/$scene-$seed-probed.tmp" "$out/$scene-$seed-probed.txt"; fi
       sort -n "$timed.tmp" | cut -f2 > "$timed"
       rm -f "$timed.tmp"
     done
-    "$python" - "$scene" "$seed" "$out/$scene-$seed-calibration.json" "$rows" "$out/$scene-$seed-render-"*.txt \
-      >> "$table" <<'PY'
+    "$python" - "$scene" "$seed" "$out/$scene-$seed-calibration.json" "$rows" "$out/$scene-$seed-probed.txt" \
+      "$out/$scene-$seed-render-"*.txt >> "$table" <<'PY'
 import json, statistics, sys
-scene, seed, calibration, rows = sys.argv[1:5]
-passes = [[float(v) for v in open(path)] for path in sys.argv[5:]]
+scene, seed, calibration, rows, probed_path = sys.argv[1:6]
+passes = [[float(v) for v in open(path)] for path in sys.argv[6:]]
 c = json.load(open(calibration))
 linear = next(m for m in c["models"] if m["name"] == "linear")
 predicted = [float(line.split("\t")[2]) for line in open(rows)]
@@ -84,6 +91,13 @@ def errors(measured):
     return [abs(p - m) / m for p, m in zip(predicted, measured)]
 medians = [statistics.median(times) for times in zip(*passes)]
 first, of_medians = errors(passes[0]), errors(medians)
+# The probed estimates were made in pass 1's order, just before each of its renders.
+order = list(range(len(predicted)))
+probed_in_order = [float(v) for v in open(probed_path)]
+probed = [0.0] * len(predicted)
+for k, index in enumerate(order):
+    probed[index] = probed_in_order[k]
+probed_errors = [abs(p - m) / m for p, m in zip(probed, passes[0])]
 signed = [(p - m) / m for p, m in zip(predicted, medians)]
 spread = [(max(t) - min(t)) / statistics.median(t) for t in zip(*passes)]
 h, r = linear["held_out_errors"], linear["rotated_held_out_errors"]
@@ -92,7 +106,7 @@ mp = lambda e: f"**{pct(sum(e) / len(e))} / {pct(q(e, 0.9))}**"
 drift = c.get("pass_drift")
 print(f"| {scene} | {seed} | {c['learned_from']} x {c['learned_scale']:.3f} | {pct(h['mean'])} / {pct(h['p90'])} | "
       f"{pct(r['mean'])} / {pct(r['p90'])} | {'n/a' if drift is None else pct(drift)} | {mp(first)} | {mp(of_medians)} | "
-      f"{pct(sum(signed) / len(signed))} | {pct(statistics.median(spread))} |")
+      f"{pct(sum(signed) / len(signed))} | {pct(statistics.median(spread))} | {mp(probed_errors)} |")
 PY
     tail -1 "$table"
   done
