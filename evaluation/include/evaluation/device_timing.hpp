@@ -14,8 +14,8 @@
 // predicted the median best with every fitting viewpoint held out once), holds every viewpoint
 // out once, and refits learning from the other statistics of the same draws, so that one run
 // shows how much of the error is the model and how much the clock. Each pass's speed against the
-// run's is recorded (passTimeFactors): a calibration during which the machine's speed moved
-// beyond timemodel::kPassDriftWarning says so, and so does every profile it writes.
+// run's is recorded (passTimeFactors; their spread in the profile as timing.passDrift), so that a
+// calibration during which the machine's speed moved beyond timemodel::kPassDriftWarning can say so.
 #pragma once
 
 #include <chrono>

@@ -75,8 +75,9 @@ double passSpread(const std::vector<double>& perPass);
 // of that pass's median ÷ the sample's median over all its passes (samples with a time <= 0 in
 // any pass are skipped). 1 is the run's typical speed; 1.2, a pass whose frames took 20% longer.
 // A machine whose speed moves between passes (another tenant, a clock governor) shows here
-// before it shows as model error. One factor per pass of the first sample; empty when there is
-// no sample or no pass.
+// before it shows as model error. One factor per pass (as many as the first sample has; samples
+// with another count are skipped); empty when there is no sample, no pass, or a pass no sample
+// could judge.
 std::vector<double> passTimeFactors(const std::vector<PassTimes>& times);
 
 // (greatest factor ÷ least) − 1: how far the machine's speed moved between a run's passes; 0 for
