@@ -101,9 +101,8 @@ void runEstimate(const EstimateOptions& options) {
         settings.height = height;
         settings.shading = renderer::parseShading(shading);
         options.backend.applyTo(settings);
-        renderer::Renderer renderer(scene, settings);
         try {
-            probe = evaluation::probeSpeed(scene, renderer, profile);
+            probe = evaluation::probeSpeed(scene, profile, settings);
         } catch (const std::invalid_argument& error) {
             throw UsageError(std::string("--speed-probe: ") + error.what());
         }

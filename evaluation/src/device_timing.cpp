@@ -71,8 +71,8 @@ int timePasses(renderer::Renderer& renderer, const timemodel::CalibrationPlan& p
 
 }  // namespace
 
-SpeedProbe probeSpeed(const scenes::Scene& scene, renderer::Renderer& renderer, const timemodel::DeviceProfile& profile,
-                      int repeats, int warmup) {
+SpeedProbe probeSpeed(const scenes::Scene& scene, const timemodel::DeviceProfile& profile,
+                      const renderer::RenderSettings& settings, int repeats, int warmup) {
     const timemodel::TimingSettings& timing = profile.timing;
     if (!(timing.anchorMs > 0.0) || timing.anchorView.empty()) {
         throw std::invalid_argument("the profile has no speed anchor (written before calibrations recorded one): "
@@ -82,7 +82,6 @@ SpeedProbe probeSpeed(const scenes::Scene& scene, renderer::Renderer& renderer, 
         throw std::invalid_argument("the profile's speed anchor is a frame of scene '" + profile.scene + "', not '" +
                                     scene.name + "'");
     }
-    const renderer::RenderSettings& settings = renderer.settings();
     if (settings.width != profile.width || settings.height != profile.height ||
         renderer::shadingName(settings.shading) != profile.shading) {
         throw std::invalid_argument("the speed anchor was timed at " + std::to_string(profile.width) + "x" +
@@ -95,6 +94,7 @@ SpeedProbe probeSpeed(const scenes::Scene& scene, renderer::Renderer& renderer, 
         throw std::invalid_argument("the profile's speed anchor is view '" + timing.anchorView + "', which scene '" +
                                     scene.name + "' does not have");
     }
+    renderer::Renderer renderer(scene, settings);
     SpeedProbe probe;
     probe.view = timing.anchorView;
     probe.anchorMs = timing.anchorMs;

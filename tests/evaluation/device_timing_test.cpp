@@ -104,14 +104,13 @@ TEST(DeviceTiming, CalibrationTimesEverySampleInEveryPassAndFitsTheProfile) {
 
 TEST(DeviceTiming, SpeedProbeTimesTheAnchorAgainAndRefusesWhatItCannotCompare) {
     const scenes::Scene scene = scenes::makeHarborScene();
-    renderer::Renderer renderer(scene, smallSettings());
     timemodel::DeviceProfile profile;
     profile.scene = scene.name;
     profile.width = profile.height = 64;
     profile.shading = renderer::shadingName(renderer::kDefaultShading);
     profile.timing.anchorView = scene.views[0].name;
     profile.timing.anchorMs = 1000.0;  // a machine far slower than any this runs on
-    const evaluation::SpeedProbe probe = evaluation::probeSpeed(scene, renderer, profile, 3, 1);
+    const evaluation::SpeedProbe probe = evaluation::probeSpeed(scene, profile, smallSettings(), 3, 1);
     EXPECT_EQ(probe.view, scene.views[0].name);
     EXPECT_EQ(probe.anchorMs, 1000.0);
     EXPECT_GT(probe.probeMs, 0.0);
@@ -120,7 +119,7 @@ TEST(DeviceTiming, SpeedProbeTimesTheAnchorAgainAndRefusesWhatItCannotCompare) {
 
     const auto refused = [&](timemodel::DeviceProfile changed, const std::string& expected) {
         try {
-            evaluation::probeSpeed(scene, renderer, changed, 1, 0);
+            evaluation::probeSpeed(scene, changed, smallSettings(), 1, 0);
             ADD_FAILURE() << "probed: " << expected;
         } catch (const std::invalid_argument& error) {
             EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();

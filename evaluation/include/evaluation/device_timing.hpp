@@ -75,19 +75,20 @@ CalibrationResult calibrateDevice(const scenes::Scene& scene, renderer::Renderer
 
 // How much faster or slower the machine draws now than when `profile` was calibrated: its speed
 // anchor (timemodel::TimingSettings::anchorView / anchorMs, every object at its finest level)
-// timed again on `renderer` as `render --time` times a frame (`repeats` draws after `warmup`,
-// their median). A prediction of the profile times `ratio` is a prediction for the machine as it
+// timed again by a renderer of `scene` with `settings`, as `render --time` times a frame
+// (`repeats` draws after `warmup`, their median). A prediction of the profile times `ratio` is a prediction for the machine as it
 // is now: what the scheduler's feedback learns over frames, in one probe. On a shared machine
 // whose speed moves by tens of percent within minutes (docs/timemodel.md "Measured agreement"),
 // that offset dwarfs the model's error. Throws std::invalid_argument when the profile has no
-// anchor, is another scene's, or the renderer draws another size or shading than the profile's.
+// anchor, is another scene's, or `settings` ask for another size or shading than the profile's
+// (before any renderer is made).
 struct SpeedProbe {
     std::string view;
     double anchorMs = 0.0;  // in the calibration
     double probeMs = 0.0;   // now
     double ratio = 1.0;     // probeMs / anchorMs
 };
-SpeedProbe probeSpeed(const scenes::Scene& scene, renderer::Renderer& renderer, const timemodel::DeviceProfile& profile,
-                      int repeats = 15, int warmup = 2);
+SpeedProbe probeSpeed(const scenes::Scene& scene, const timemodel::DeviceProfile& profile,
+                      const renderer::RenderSettings& settings, int repeats = 15, int warmup = 2);
 
 }  // namespace lodopt::evaluation
