@@ -11,8 +11,10 @@
 # (held-out error, drift between its passes), then |estimate - render| / render (mean and p90)
 # against the first pass's render --time (what one run of it gives) and against the median of
 # the passes, the signed mean, how far render --time disagrees with itself (median over the
-# combinations of (greatest - least) / median of its passes), and `estimate --speed-probe` (made
-# just before each render of the first pass) against that render. Run on a quiet machine.
+# combinations of (greatest - least) / median of its passes), `estimate --speed-probe` (made just
+# before each render of the first pass) against that render with the probes' ratios, and the
+# error against the median once one offset per calibration is divided out
+# (scripts/timing_agreement_row.py makes each row). Run on a quiet machine.
 # Environment: LODOPT (default build/cli/lodopt), LODOPT_CALIBRATE_ARGS (more calibrate options).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,8 +28,8 @@ python=${PYTHON:-/usr/bin/python3}
 mkdir -p "$out"
 table="$out/agreement.md"
 {
-  echo "| scene | seed | learned from | calibration held-out mean / p90 | every viewpoint out mean / p90 | pass drift | vs one render --time mean / p90 | vs median of the passes mean / p90 | signed mean | render --time spread | --speed-probe vs one render --time mean / p90 |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| scene | seed | learned from | calibration held-out mean / p90 | every viewpoint out mean / p90 | pass drift | vs one render --time mean / p90 | vs median of the passes mean / p90 | --speed-probe vs one render --time mean / p90 | probe now / then, median (range) | signed mean | render --time spread | one offset removed mean / p90 (offset) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$table"
 for scene in $scenes; do
   "$lodopt" scene info --scene "$scene" --json > "$out/$scene-info.json"
@@ -74,40 +76,8 @@ print("\n".join(map(str, o)))' "$(wc -l < "$rows")" "$pass" |
       sort -n "$timed.tmp" | cut -f2 > "$timed"
       rm -f "$timed.tmp"
     done
-    "$python" - "$scene" "$seed" "$out/$scene-$seed-calibration.json" "$rows" "$out/$scene-$seed-probed.txt" \
-      "$out/$scene-$seed-render-"*.txt >> "$table" <<'PY'
-import json, statistics, sys
-scene, seed, calibration, rows, probed_path = sys.argv[1:6]
-passes = [[float(v) for v in open(path)] for path in sys.argv[6:]]
-c = json.load(open(calibration))
-linear = next(m for m in c["models"] if m["name"] == "linear")
-predicted = [float(line.split("\t")[2]) for line in open(rows)]
-def q(values, f):
-    values = sorted(values)
-    x = f * (len(values) - 1)
-    i = int(x)
-    return values[i] if i + 1 >= len(values) else values[i] + (x - i) * (values[i + 1] - values[i])
-def errors(measured):
-    return [abs(p - m) / m for p, m in zip(predicted, measured)]
-medians = [statistics.median(times) for times in zip(*passes)]
-first, of_medians = errors(passes[0]), errors(medians)
-# The probed estimates were made in pass 1's order, just before each of its renders.
-order = list(range(len(predicted)))
-probed_in_order = [float(v) for v in open(probed_path)]
-probed = [0.0] * len(predicted)
-for k, index in enumerate(order):
-    probed[index] = probed_in_order[k]
-probed_errors = [abs(p - m) / m for p, m in zip(probed, passes[0])]
-signed = [(p - m) / m for p, m in zip(predicted, medians)]
-spread = [(max(t) - min(t)) / statistics.median(t) for t in zip(*passes)]
-h, r = linear["held_out_errors"], linear["rotated_held_out_errors"]
-pct = lambda v: f"{100 * v:.1f}"
-mp = lambda e: f"**{pct(sum(e) / len(e))} / {pct(q(e, 0.9))}**"
-drift = c.get("pass_drift")
-print(f"| {scene} | {seed} | {c['learned_from']} x {c['learned_scale']:.3f} | {pct(h['mean'])} / {pct(h['p90'])} | "
-      f"{pct(r['mean'])} / {pct(r['p90'])} | {'n/a' if drift is None else pct(drift)} | {mp(first)} | {mp(of_medians)} | "
-      f"{pct(sum(signed) / len(signed))} | {pct(statistics.median(spread))} | {mp(probed_errors)} |")
-PY
+    "$python" scripts/timing_agreement_row.py "$scene" "$seed" "$out/$scene-$seed-calibration.json" "$rows" \
+      "$out/$scene-$seed-probed.txt" "$out/$scene-$seed-render-"*.txt >> "$table"
     tail -1 "$table"
   done
 done

@@ -55,13 +55,12 @@ double passSpread(const std::vector<double>& perPass) {
 }
 
 std::vector<double> passTimeFactors(const std::vector<PassTimes>& times) {
-    if (times.empty()) return {};
-    const std::size_t passes = times.front().median.size();
+    const std::size_t passes = times.empty() ? 0 : times.front().median.size();
+    if (passes == 0) return {};
     std::vector<std::vector<double>> ratios(passes);
     for (const PassTimes& t : times) {
-        if (t.median.size() != passes) continue;
+        if (t.median.size() != passes || *std::min_element(t.median.begin(), t.median.end()) <= 0.0) continue;
         const double all = median(t.median);
-        if (!(all > 0.0) || *std::min_element(t.median.begin(), t.median.end()) <= 0.0) continue;
         for (std::size_t p = 0; p < passes; ++p) ratios[p].push_back(t.median[p] / all);
     }
     std::vector<double> factors;
