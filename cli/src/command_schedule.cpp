@@ -55,7 +55,7 @@ struct ScheduleOptions {
     double switchMargin = scheduler::SwitchControlParameters{}.raiseMargin;
     double switchRefill = scheduler::SwitchControlParameters{}.refillBelow;
     bool noFeedback = false;
-    double beta = 0.3;
+    double beta = timemodel::FeedbackParameters{}.beta;
     int frames = 0;
     int stride = 1;
     // A frame's measured time: the median of 5 timed draws, what every device profile predicts
@@ -272,6 +272,7 @@ nlohmann::json summaryJson(const ScheduleRun& run, const ScheduleTotals& t) {
         {"switch_margin", run.parameters.switchControl.raiseMargin},
         {"switch_refill", run.parameters.switchControl.refillBelow},
         {"feedback", options.render && !options.noFeedback},
+        {"feedback_beta", options.render && !options.noFeedback ? nlohmann::json(options.beta) : nlohmann::json(nullptr)},
         {"frame_time", options.render ? nlohmann::json{{"statistic", "median"},
                                                        {"clock", run.frameClock},
                                                        {"draws", options.repeats}}

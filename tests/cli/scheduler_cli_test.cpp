@@ -312,6 +312,7 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
     EXPECT_EQ(summary["shading"], "pbr");              // renderer::kDefaultShading
     EXPECT_EQ(summary["switch_margin"].get<double>(), 0.05);
     EXPECT_EQ(summary["switch_refill"].get<double>(), 0.1);
+    EXPECT_EQ(summary["feedback_beta"].get<double>(), 0.7);  // docs/scheduler.md "Feedback"
     EXPECT_GT(summary["decision_us"]["max"].get<double>(), 0.0);
     EXPECT_GT(summary["measured_ms"]["mean"].get<double>(), 0.0);
     EXPECT_GT(summary["fitness"]["mean"].get<double>(), 0.0);

@@ -55,7 +55,10 @@ struct FitReport {
 };
 
 struct FeedbackParameters {
-    double beta = 0.3;              // 0 < beta < 1, DONG15 eq. 9
+    // 0 < beta < 1, DONG15 eq. 9. 0.7: replaying nine recorded schedules (three scenes, three
+    // runs) with other gains, 0.7 put more binding frames in the budget's band than 0.3 in each
+    // (docs/scheduler.md "Feedback", scripts/feedback_replay.py).
+    double beta = 0.7;
     double maxRelativeError = 1.0;  // 0 < x <= 1: clamp of (t_act − t_est)/t_est per frame
     double maxDrift = 4.0;          // >= 1: accumulated scale stays in [1/maxDrift, maxDrift]
 };
