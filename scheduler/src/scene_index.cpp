@@ -12,6 +12,7 @@
 #include <system_error>
 #include <thread>
 
+#include "scenes/lod_generation.hpp"
 #include "scheduler/switch_control.hpp"
 
 namespace lodopt::scheduler {
@@ -79,12 +80,25 @@ struct SceneIndex::Canonical {
     std::vector<double> nearArea;
     // Per (object, level): the exponent code per feature (0 → e = 0, 1 → ½, 2 → 1).
     std::vector<std::array<std::uint8_t, kFeatureCount>> exponent;
-    // Per object: the object alone in a scene with at most kProxyTriangles triangles per level
-    // (an even sample of its triangles), for objects near the eye; per (object, level) the
-    // proxy's unseen features and the factor per feature from the proxy to the object.
-    std::vector<scenes::Scene> proxies;
-    std::vector<FrameFeatures> proxyUnseen;
-    std::vector<FrameFeatures> proxyScale;
+    // For objects near the eye, two stand-ins per object, each the object alone with at most
+    // about kProxyTriangles triangles per level, and per (object, level) each one's unseen
+    // features and the factor per feature from it to the object:
+    //   sampled  an even sample of the level's triangles, for the counts of triangles, edges
+    //            and blocks (shaded or not), which scale with the sample whatever the view;
+    //   surface  the level reduced to the same surface (surfaceProxyOf), for the pixels it
+    //            covers (kSurfaceFeatures). A sample's area seen from near a large surface is
+    //            a few large triangles in or out of it, and its depth pass sees through the
+    //            gaps: on the harbor's approach the sea's shaded pixels came out at 0.6-2x the
+    //            exact ones, level by level.
+    struct Proxy {
+        std::vector<scenes::Scene> scenes;  // per object
+        std::vector<FrameFeatures> unseen;  // per (object, level)
+        std::vector<FrameFeatures> scale;   // per (object, level)
+        timemodel::FeatureSet needed;       // what its tables compute
+        int depthPassCells = 0;
+    };
+    Proxy sampled;
+    Proxy surface;
 };
 
 namespace {
@@ -93,11 +107,47 @@ namespace {
 // of the object is in view (a terrain under the eye), so the object's proxy is measured.
 constexpr float kProxyWithinRadii = 1.5f;
 constexpr std::size_t kProxyTriangles = 256;
+// Taken from the surface proxy (Canonical::Proxy): the pixels the level covers.
+constexpr std::array kSurfaceFeatures = {timemodel::Feature::kRasterPixels, timemodel::Feature::kShadedPixels,
+                                         timemodel::Feature::kTexturedPixels};
+// The surface proxy's table computes those alone (of what the model reads).
+timemodel::FeatureSet surfaceFeatures(const timemodel::FeatureSet& needed) {
+    timemodel::FeatureSet set;
+    for (const timemodel::Feature feature : kSurfaceFeatures)
+        set.set(static_cast<std::size_t>(feature), timemodel::contains(needed, feature));
+    return set;
+}
 // The proxy's depth pass, measured at set-up and again every frame the object is near the eye,
 // on a coarser grid than the time model's: a proxy fills the view there, and at 128 cells its
 // pass cost about as much as the rest of a city decision.
 constexpr int kProxyDepthPassCells = 32;
+// The surface proxy's: its shaded pixels come out as near the exact ones at 16 cells as at 32
+// (bench/scheduler_bench: the same errors to 1%), and its pass is the larger part of its cost.
+constexpr int kSurfaceDepthPassCells = 16;
 constexpr int kDepthPassCells = timemodel::FeatureTable::kDepthPassCells;
+
+// `mesh` with `indices` (into its vertices) and only the vertices they use: the tables
+// transform every vertex.
+scenes::Mesh compactMesh(const scenes::Mesh& mesh, std::vector<std::uint32_t> indices) {
+    std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);
+    scenes::Mesh compact;
+    compact.material = mesh.material;
+    compact.flatNormals = mesh.flatNormals;
+    for (std::uint32_t& index : indices) {
+        if (remap[index] == UINT32_MAX) {
+            remap[index] = std::uint32_t(compact.positions.size());
+            compact.positions.push_back(mesh.positions[index]);
+            if (index < mesh.normals.size()) compact.normals.push_back(mesh.normals[index]);
+            if (index < mesh.uvs.size()) compact.uvs.push_back(mesh.uvs[index]);
+            if (index < mesh.uvs1.size()) compact.uvs1.push_back(mesh.uvs1[index]);
+            if (index < mesh.tangents.size()) compact.tangents.push_back(mesh.tangents[index]);
+            if (index < mesh.colors.size()) compact.colors.push_back(mesh.colors[index]);
+        }
+        index = remap[index];
+    }
+    compact.indices = std::move(indices);
+    return compact;
+}
 
 // `object` with every level's triangles thinned to an even sample of at most kProxyTriangles.
 scenes::Object proxyOf(const scenes::Object& object) {
@@ -114,22 +164,76 @@ scenes::Object proxyOf(const scenes::Object& object) {
                 kept.insert(kept.end(), mesh.indices.begin() + std::ptrdiff_t(i),
                             mesh.indices.begin() + std::ptrdiff_t(i + 3));
             }
-            // Keep only the vertices the sample uses: the tables transform every vertex.
-            std::vector<std::uint32_t> remap(mesh.positions.size(), UINT32_MAX);
-            scenes::Mesh compact;
-            compact.material = mesh.material;
-            for (std::uint32_t& index : kept) {
-                if (remap[index] == UINT32_MAX) {
-                    remap[index] = std::uint32_t(compact.positions.size());
-                    compact.positions.push_back(mesh.positions[index]);
-                    if (index < mesh.normals.size()) compact.normals.push_back(mesh.normals[index]);
-                    if (index < mesh.uvs.size()) compact.uvs.push_back(mesh.uvs[index]);
-                }
-                index = remap[index];
-            }
-            compact.indices = std::move(kept);
-            mesh = std::move(compact);
+            mesh = compactMesh(mesh, std::move(kept));
         }
+    }
+    return proxy;
+}
+
+// Object-space area of the triangle whose indices start at `first`.
+double triangleArea(const scenes::Mesh& mesh, std::size_t first) {
+    const glm::vec3 a = mesh.positions[mesh.indices[first]], b = mesh.positions[mesh.indices[first + 1]],
+                    c = mesh.positions[mesh.indices[first + 2]];
+    return 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+}
+
+double surfaceArea(const scenes::Level& level) {
+    double area = 0.0;
+    for (const scenes::Mesh& mesh : level.meshes) {
+        for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) area += triangleArea(mesh, i);
+    }
+    return area;
+}
+
+// `level` cut to its kProxyTriangles largest triangles (by area; ties by order), its meshes
+// compacted to the vertices those use.
+scenes::Level largestTriangles(const scenes::Level& level) {
+    struct Triangle {
+        double area;
+        std::size_t mesh, first;
+    };
+    std::vector<Triangle> triangles;
+    for (std::size_t m = 0; m < level.meshes.size(); ++m) {
+        const scenes::Mesh& mesh = level.meshes[m];
+        for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) triangles.push_back({triangleArea(mesh, i), m, i});
+    }
+    const std::size_t kept = std::min(triangles.size(), kProxyTriangles);
+    std::stable_sort(triangles.begin(), triangles.end(),
+                     [](const Triangle& x, const Triangle& y) { return x.area > y.area; });
+    std::vector<std::vector<std::size_t>> firsts(level.meshes.size());
+    for (std::size_t t = 0; t < kept; ++t) firsts[triangles[t].mesh].push_back(triangles[t].first);
+    scenes::Level result = level;
+    for (std::size_t m = 0; m < level.meshes.size(); ++m) {
+        std::sort(firsts[m].begin(), firsts[m].end());
+        std::vector<std::uint32_t> indices;
+        for (std::size_t first : firsts[m])
+            indices.insert(indices.end(), level.meshes[m].indices.begin() + std::ptrdiff_t(first),
+                           level.meshes[m].indices.begin() + std::ptrdiff_t(first + 3));
+        result.meshes[m] = compactMesh(level.meshes[m], std::move(indices));
+    }
+    return result;
+}
+
+// `object` with every level reduced to about kProxyTriangles triangles covering what the level
+// covers (levels already that small kept as they are): simplified (scenes::simplifyMesh) where
+// that keeps the surface area within 10%; otherwise (triangle soups, which simplification
+// clusters away: the city's ground) its largest triangles.
+scenes::Object surfaceProxyOf(const scenes::Object& object) {
+    scenes::Object proxy = object;
+    for (scenes::Level& level : proxy.levels) {
+        std::size_t total = 0;
+        for (const scenes::Mesh& mesh : level.meshes) total += mesh.indices.size() / 3;
+        if (total <= kProxyTriangles) continue;
+        const float ratio = float(kProxyTriangles) / float(total);
+        scenes::Level simplified = level;
+        for (scenes::Mesh& mesh : simplified.meshes) {
+            scenes::Mesh out;
+            scenes::simplifyMesh(mesh, ratio, out);
+            mesh = std::move(out);
+        }
+        const double area = surfaceArea(level);
+        const double kept = surfaceArea(simplified);
+        level = area > 0.0 && std::abs(kept / area - 1.0) <= 0.1 ? std::move(simplified) : largestTriangles(level);
     }
     return proxy;
 }
@@ -204,16 +308,25 @@ void SceneIndex::measureCanonical() {
     std::vector<scenes::Texture> textureSizes;
     for (const scenes::Texture& texture : mScene.textures)
         textureSizes.push_back({texture.name, texture.width, texture.height, {}});
-    c.proxies.resize(std::size_t(objectCount()));
-    c.proxyUnseen.resize(std::size_t(levels));
-    c.proxyScale.resize(std::size_t(levels));
+    c.sampled.needed = mNeeded;
+    c.sampled.depthPassCells = kProxyDepthPassCells;
+    c.surface.needed = surfaceFeatures(mNeeded);
+    c.surface.depthPassCells = kSurfaceDepthPassCells;
+    for (Canonical::Proxy* proxy : {&c.sampled, &c.surface}) {
+        proxy->scenes.resize(std::size_t(objectCount()));
+        proxy->unseen.resize(std::size_t(levels));
+        proxy->scale.resize(std::size_t(levels));
+    }
     // Objects are measured independently, each into its own slots: spread over threads.
     auto measureObject = [&](int o, scenes::Scene& single) {
         single.objects.assign(1, mScene.objects[o]);
-        scenes::Scene& proxy = c.proxies[std::size_t(o)];
-        proxy.materials = mScene.materials;
-        proxy.textures = textureSizes;
-        proxy.objects.assign(1, proxyOf(mScene.objects[o]));
+        for (Canonical::Proxy* proxy : {&c.sampled, &c.surface}) {
+            scenes::Scene& stand = proxy->scenes[std::size_t(o)];
+            stand.materials = mScene.materials;
+            stand.textures = textureSizes;
+            stand.objects.assign(1,
+                                 proxy == &c.sampled ? proxyOf(mScene.objects[o]) : surfaceProxyOf(mScene.objects[o]));
+        }
         const ObjectShape& shape = mShapes[o];
         const float radius = std::max(shape.radius, 1e-4f);
         const float nearDistance = float(radius / std::sin(halfAngle));
@@ -230,10 +343,12 @@ void SceneIndex::measureCanonical() {
         away.target = away.position + glm::vec3(0.0f, 0.0f, nearDistance);  // looking away
         const timemodel::FeatureTable unseen(single, away, mWidth, mHeight, kDepthPassCells, mNeeded);
         const int count = levelCount(o);
-        const timemodel::FeatureTable proxyUnseen(proxy, away, mWidth, mHeight, kProxyDepthPassCells, mNeeded);
-        for (int l = 0; l < count; ++l) {
-            c.unseen[mFirstLevel[o] + l] = unseen.contribution(0, l);
-            c.proxyUnseen[mFirstLevel[o] + l] = proxyUnseen.contribution(0, l);
+        Canonical::Proxy* const proxies[2] = {&c.sampled, &c.surface};
+        for (int l = 0; l < count; ++l) c.unseen[mFirstLevel[o] + l] = unseen.contribution(0, l);
+        for (Canonical::Proxy* proxy : proxies) {
+            const timemodel::FeatureTable proxyUnseen(proxy->scenes[std::size_t(o)], away, mWidth, mHeight,
+                                                      proxy->depthPassCells, proxy->needed);
+            for (int l = 0; l < count; ++l) proxy->unseen[mFirstLevel[o] + l] = proxyUnseen.contribution(0, l);
         }
         // Exponents from the six axis directions together (a far table per direction would
         // double the set-up time for little: the power a feature scales with is a property of
@@ -241,18 +356,22 @@ void SceneIndex::measureCanonical() {
         std::vector<FrameFeatures> nearSum(static_cast<std::size_t>(count)), farSum(static_cast<std::size_t>(count));
         std::vector<double> nearAreaSum(static_cast<std::size_t>(count), 0.0),
             farAreaSum(static_cast<std::size_t>(count), 0.0);
-        std::vector<FrameFeatures> proxySum(static_cast<std::size_t>(count));
+        std::vector<FrameFeatures> proxySum[2] = {std::vector<FrameFeatures>(static_cast<std::size_t>(count)),
+                                                  std::vector<FrameFeatures>(static_cast<std::size_t>(count))};
         for (int k = 0; k < Canonical::kDirections; ++k) {
             const scenes::Camera nearCamera = cameraAt(c.directions[k], nearDistance);
             const timemodel::FeatureTable nearTable(single, nearCamera, mWidth, mHeight, kDepthPassCells, mNeeded);
             const glm::mat4 nearVp =
                 scenes::projectionMatrix(nearCamera, float(aspect)) * scenes::viewMatrix(nearCamera);
             const bool axis = k < 6;
-            std::unique_ptr<timemodel::FeatureTable> farTable, proxyTable;
+            std::unique_ptr<timemodel::FeatureTable> farTable, proxyTable[2];
             glm::mat4 farVp(1.0f);
             if (axis) {
-                proxyTable = std::make_unique<timemodel::FeatureTable>(proxy, nearCamera, mWidth, mHeight,
-                                                                       kProxyDepthPassCells, mNeeded);
+                for (int p = 0; p < 2; ++p) {
+                    proxyTable[p] = std::make_unique<timemodel::FeatureTable>(
+                        proxies[p]->scenes[std::size_t(o)], nearCamera, mWidth, mHeight, proxies[p]->depthPassCells,
+                        proxies[p]->needed);
+                }
                 const scenes::Camera farCamera = cameraAt(c.directions[k], nearDistance * kFarFactor);
                 farTable = std::make_unique<timemodel::FeatureTable>(single, farCamera, mWidth, mHeight,
                                                                      kDepthPassCells, mNeeded);
@@ -270,15 +389,18 @@ void SceneIndex::measureCanonical() {
                     farSum[l] += farTable->contribution(0, l) - c.unseen[index];
                     nearAreaSum[l] += nearArea;
                     farAreaSum[l] += projectBox(box, farVp * shape.transform, mWidth, mHeight).area;
-                    proxySum[l] += proxyTable->contribution(0, l) - c.proxyUnseen[index];
+                    for (int p = 0; p < 2; ++p)
+                        proxySum[p][l] += proxyTable[p]->contribution(0, l) - proxies[p]->unseen[index];
                 }
             }
         }
-        for (int l = 0; l < count; ++l) {
-            FrameFeatures& scale = c.proxyScale[std::size_t(mFirstLevel[o] + l)];
-            for (std::size_t f = 0; f < kFeatureCount; ++f) {
-                const double p = proxySum[l].values[f];
-                scale.values[f] = p > 0.0 ? nearSum[l].values[f] / p : 1.0;
+        for (int p = 0; p < 2; ++p) {
+            for (int l = 0; l < count; ++l) {
+                FrameFeatures& scale = proxies[p]->scale[std::size_t(mFirstLevel[o] + l)];
+                for (std::size_t f = 0; f < kFeatureCount; ++f) {
+                    const double sum = proxySum[p][l].values[f];
+                    scale.values[f] = sum > 0.0 ? nearSum[l].values[f] / sum : 1.0;
+                }
             }
         }
         for (int l = 0; l < count; ++l) {
@@ -361,15 +483,21 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
     glm::vec3 toEye = out.camera.position - shape.center;
     const float length = glm::length(toEye);
     if (length < kProxyWithinRadii * shape.radius) {
-        const timemodel::FeatureTable table(c.proxies[std::size_t(object)], out.camera, mWidth, mHeight,
-                                            kProxyDepthPassCells, mNeeded);
+        const timemodel::FeatureTable sampled(c.sampled.scenes[std::size_t(object)], out.camera, mWidth, mHeight,
+                                              c.sampled.depthPassCells, c.sampled.needed);
+        const timemodel::FeatureTable surface(c.surface.scenes[std::size_t(object)], out.camera, mWidth, mHeight,
+                                              c.surface.depthPassCells, c.surface.needed);
         for (int l = 0; l < count; ++l) {
             const int index = first + l;
             FrameFeatures& f = out.contributions[index];
-            const FrameFeatures seen = table.contribution(0, l) - c.proxyUnseen[index];
+            const FrameFeatures seen = sampled.contribution(0, l) - c.sampled.unseen[index];
             f = c.unseen[index];
             for (std::size_t k = 0; k < kFeatureCount; ++k)
-                f.values[k] += seen.values[k] * c.proxyScale[index].values[k];
+                f.values[k] += seen.values[k] * c.sampled.scale[index].values[k];
+            const FrameFeatures covered = surface.contribution(0, l) - c.surface.unseen[index];
+            for (const timemodel::Feature feature : kSurfaceFeatures) {
+                f[feature] = c.unseen[index][feature] + covered[feature] * c.surface.scale[index][feature];
+            }
         }
         return true;
     }

@@ -18,12 +18,17 @@
 //           projection), visible triangles scale with the visible share of the box, raster
 //           areas with the screen area, and a feature added to the time model later is handled
 //           alike. An object whose centre is within 1.5 bounding radii of the eye (a terrain
-//           under it, a tree brushed past) is measured through its proxy instead: the object
-//           alone with an even sample of at most 256 triangles per level, each feature scaled
-//           by the object / proxy ratio seen from the axis directions (this allocates); there a
-//           box's screen rectangle says little about what is in view. Features that depend on
-//           the other objects (the time model's shaded pixels, decided by a depth pass over the
-//           whole frame) see the object alone, so Bounds over-counts occluded fragments; the
+//           under it, a tree brushed past) is measured through two stand-ins instead, each the
+//           object alone with about 256 triangles per level and each feature scaled by the
+//           object / stand-in ratio seen from the axis directions (this allocates); there a
+//           box's screen rectangle says little about what is in view. Counts of triangles,
+//           edges and blocks come from an even sample of the level's triangles; the pixels it
+//           covers (raster, shaded, textured) from the level reduced to the same surface:
+//           simplified where that keeps its area within 10%, otherwise (a soup of separate
+//           quads) its largest triangles: a sample covers a large surface in a few large
+//           triangles, in or out of it, and its depth pass sees through the gaps. Features that
+//           depend on the other objects (the time model's shaded pixels, decided by a depth pass
+//           over the whole frame) see the object alone, so Bounds over-counts occluded fragments; the
 //           measured-time feedback absorbs such a bias. tests/scheduler/scene_index_test.cpp
 //           bounds the error against Exact; docs/scheduler.md reports it on the scenes' paths.
 #pragma once
