@@ -149,12 +149,17 @@ scenes::Mesh compactMesh(const scenes::Mesh& mesh, std::vector<std::uint32_t> in
     return compact;
 }
 
+std::size_t triangleCount(const scenes::Level& level) {
+    std::size_t total = 0;
+    for (const scenes::Mesh& mesh : level.meshes) total += mesh.indices.size() / 3;
+    return total;
+}
+
 // `object` with every level's triangles thinned to an even sample of at most kProxyTriangles.
 scenes::Object proxyOf(const scenes::Object& object) {
     scenes::Object proxy = object;
     for (scenes::Level& level : proxy.levels) {
-        std::size_t total = 0;
-        for (const scenes::Mesh& mesh : level.meshes) total += mesh.indices.size() / 3;
+        const std::size_t total = triangleCount(level);
         const std::size_t stride = std::max<std::size_t>(1, (total + kProxyTriangles - 1) / kProxyTriangles);
         std::size_t triangle = 0;
         for (scenes::Mesh& mesh : level.meshes) {
@@ -221,8 +226,7 @@ scenes::Level largestTriangles(const scenes::Level& level) {
 scenes::Object surfaceProxyOf(const scenes::Object& object) {
     scenes::Object proxy = object;
     for (scenes::Level& level : proxy.levels) {
-        std::size_t total = 0;
-        for (const scenes::Mesh& mesh : level.meshes) total += mesh.indices.size() / 3;
+        const std::size_t total = triangleCount(level);
         if (total <= kProxyTriangles) continue;
         const float ratio = float(kProxyTriangles) / float(total);
         scenes::Level simplified = level;
