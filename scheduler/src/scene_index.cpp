@@ -100,6 +100,15 @@ struct SceneIndex::Canonical {
     };
     Proxy sampled;
     Proxy surface;
+    // The share of an object's shaded fragments that objects drawn before it and passing
+    // through its box leave visible (interpenetratingOccluders), per object with such
+    // occluders (occlusionRow: its first slot, −1 without), per distance (the canonical near
+    // one; kOcclusionNearRadii, for an eye near the object) and per occlusion direction. The
+    // share follows the eye's elevation over a sea or a terrain closely, so it is measured from
+    // more directions than the 14 and interpolated between them (unoccludedShare).
+    std::vector<glm::vec3> occlusionDirections;
+    std::vector<int> occlusionRow;
+    std::vector<float> unoccluded;
 };
 
 namespace {
@@ -129,6 +138,17 @@ constexpr int kProxyDepthPassCells = 32;
 // cells as at 32, and a frame is observed 2-30% faster.
 constexpr int kSurfaceDepthPassCells = 16;
 constexpr int kDepthPassCells = timemodel::FeatureTable::kDepthPassCells;
+// The depth passes that measure how much of an object its interpenetrating occluders hide,
+// from this many directions spread evenly over the sphere (a Fibonacci lattice, about 25°
+// apart); a frame weighs those within 28° of the eye's direction. bench/scheduler_bench: 48
+// directions within 30° and 96 within 25° gave the forest 6.0% and 4.4% all-finest frame
+// error (64: 5.0%), at 2.9 and 3.8 s of set-up (64: 3.2 s).
+constexpr int kOcclusionDepthPassCells = 32;
+constexpr int kOcclusionDirections = 64;
+constexpr float kOcclusionReachCos = 0.883f;  // cos 28°
+// The near-eye shares are measured this many bounding radii from the object's centre: from
+// close by, the water in front of a hull hides more of it than from afar in the same direction.
+constexpr float kOcclusionNearRadii = 1.25f;
 
 // `mesh` with `indices` (into its vertices) and only the vertices they use: the tables
 // transform every vertex.
@@ -246,6 +266,93 @@ scenes::Object surfaceProxyOf(const scenes::Object& object) {
     return proxy;
 }
 
+// The features the depth pass scales: each is a raster count times the object's share of
+// fragments passing the depth test.
+constexpr std::array kDepthTestedFeatures = {timemodel::Feature::kShadedPixels, timemodel::Feature::kTexturedPixels,
+                                             timemodel::Feature::kShadedEdgePixels,
+                                             timemodel::Feature::kShadedPartialBlocks};
+bool readsDepthTestedFeature(const timemodel::FeatureSet& needed) {
+    return std::any_of(kDepthTestedFeatures.begin(), kDepthTestedFeatures.end(),
+                       [&](timemodel::Feature f) { return timemodel::contains(needed, f); });
+}
+
+// World-space axis-aligned box around `box` under `transform`.
+scenes::Bounds worldBox(const scenes::Bounds& box, const glm::mat4& transform) {
+    scenes::Bounds world;
+    world.min = glm::vec3(INFINITY);
+    world.max = glm::vec3(-INFINITY);
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p(corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
+                          corner & 4 ? box.max.z : box.min.z);
+        const glm::vec3 w = glm::vec3(transform * glm::vec4(p, 1.0f));
+        world.min = glm::min(world.min, w);
+        world.max = glm::max(world.max, w);
+    }
+    return world;
+}
+
+// True when `other` reaches into `box` beyond `margin` from its faces along every axis: a flat
+// sea through the middle of a hull does, a building standing on a flat ground does not.
+bool reachesInto(const scenes::Bounds& other, const scenes::Bounds& box, float margin) {
+    for (int axis = 0; axis < 3; ++axis) {
+        const float low = std::max(other.min[axis], box.min[axis]), high = std::min(other.max[axis], box.max[axis]);
+        if (low > high || high <= box.min[axis] + margin || low >= box.max[axis] - margin) return false;
+    }
+    return true;
+}
+
+// What hides part of `object` from every view on the open side, whatever the camera: the
+// objects drawn before it (the renderer draws in object order, and only those fail its
+// fragments' depth test) whose level 0 reaches into its box, such as the sea through the
+// ship's hull or a terrain through a trunk's base. Objects merely in front of it from some view
+// are not here: that occlusion depends on the camera (scene_index.hpp).
+// `worldBoxes`: each object's level-0 world box (worldBox), empty for an empty level.
+std::vector<int> interpenetratingOccluders(const std::vector<scenes::Bounds>& worldBoxes, int object) {
+    std::vector<int> occluders;
+    const scenes::Bounds& box = worldBoxes[std::size_t(object)];
+    if (box.empty()) return occluders;
+    const float margin = 0.01f * glm::length(box.max - box.min);
+    for (int p = 0; p < object; ++p) {
+        const scenes::Bounds& other = worldBoxes[std::size_t(p)];
+        if (!other.empty() && reachesInto(other, box, margin)) occluders.push_back(p);
+    }
+    return occluders;
+}
+
+// `occluder`'s level 0 cut to the triangles whose world box overlaps `box` (world space), so
+// that an occluder costs what lies in the box.
+scenes::Object cutToBox(const scenes::Object& occluder, const scenes::Bounds& box) {
+    scenes::Object cut;
+    cut.name = occluder.name;
+    cut.transform = occluder.transform;
+    cut.levels.push_back(occluder.levels.front());
+    for (scenes::Mesh& mesh : cut.levels.front().meshes) {
+        std::vector<glm::vec3> world(mesh.positions.size());
+        for (std::size_t v = 0; v < world.size(); ++v)
+            world[v] = glm::vec3(occluder.transform * glm::vec4(mesh.positions[v], 1.0f));
+        std::vector<std::uint32_t> indices;
+        for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+            const glm::vec3 a = world[mesh.indices[i]], b = world[mesh.indices[i + 1]], c = world[mesh.indices[i + 2]];
+            const glm::vec3 low = glm::min(a, glm::min(b, c)), high = glm::max(a, glm::max(b, c));
+            if (glm::all(glm::lessThanEqual(low, box.max)) && glm::all(glm::greaterThanEqual(high, box.min)))
+                indices.insert(indices.end(), mesh.indices.begin() + std::ptrdiff_t(i),
+                               mesh.indices.begin() + std::ptrdiff_t(i + 3));
+        }
+        mesh = compactMesh(mesh, std::move(indices));
+    }
+    return cut;
+}
+
+// The share of the last object's depth-tested fragments in `occluded` that pass, over that in
+// `alone` (the same object by itself): what the objects before it hide seen from `camera`.
+double unoccludedShareOf(const scenes::Scene& alone, const scenes::Scene& occluded, const scenes::Camera& camera,
+                         int width, int height) {
+    const double share = timemodel::depthTestedShares(alone, camera, width, height, kOcclusionDepthPassCells)[0];
+    const double behind =
+        timemodel::depthTestedShares(occluded, camera, width, height, kOcclusionDepthPassCells).back();
+    return share > 0.0 ? std::clamp(behind / share, 0.0, 1.0) : 1.0;
+}
+
 }  // namespace
 
 SceneIndex::SceneIndex(const scenes::Scene& scene, int width, int height, FeatureMode mode, int threads,
@@ -325,6 +432,24 @@ void SceneIndex::measureCanonical() {
         proxy->unseen.resize(std::size_t(levels));
         proxy->scale.resize(std::size_t(levels));
     }
+    const bool measureOcclusion = readsDepthTestedFeature(mNeeded);
+    for (int i = 0; i < kOcclusionDirections; ++i) {
+        const float y = 1.0f - 2.0f * (float(i) + 0.5f) / float(kOcclusionDirections);
+        const float ring = std::sqrt(std::max(0.0f, 1.0f - y * y));
+        const float angle = float(i) * 2.39996323f;  // the golden angle
+        c.occlusionDirections.push_back({ring * std::cos(angle), y, ring * std::sin(angle)});
+    }
+    c.occlusionRow.assign(std::size_t(objectCount()), -1);
+    std::vector<scenes::Bounds> worldBoxes;
+    for (const scenes::Object& object : mScene.objects) {
+        const scenes::Bounds& box = object.levels.front().stats.bounds;
+        worldBoxes.push_back(box.empty() ? box : worldBox(box, object.transform));
+    }
+    for (int o = 0; measureOcclusion && o < objectCount(); ++o) {
+        if (interpenetratingOccluders(worldBoxes, o).empty()) continue;
+        c.occlusionRow[std::size_t(o)] = int(c.unoccluded.size());
+        c.unoccluded.resize(c.unoccluded.size() + 2 * kOcclusionDirections, 1.0f);
+    }
     // Objects are measured independently, each into its own slots: spread over threads.
     auto measureObject = [&](int o, scenes::Scene& single) {
         single.objects.assign(1, mScene.objects[o]);
@@ -352,6 +477,34 @@ void SceneIndex::measureCanonical() {
         const timemodel::FeatureTable unseen(single, away, mWidth, mHeight, kDepthPassCells, mNeeded);
         const int count = levelCount(o);
         Canonical::Proxy* const proxies[2] = {&c.sampled, &c.surface};
+        if (c.occlusionRow[std::size_t(o)] >= 0) {
+            // The finest level of the object's surface stand-in alone, and after the stand-ins
+            // of what passes through its box (the depth passes' reference is level 0). What
+            // hides the object's lower part from a low eye lies outside its box (the water in
+            // front of a hull): the occluders are cut to the box widened by a radius.
+            scenes::Bounds box = worldBoxes[std::size_t(o)];
+            box.min -= glm::vec3(shape.radius);
+            box.max += glm::vec3(shape.radius);
+            scenes::Scene alone, occluded;
+            for (int p : interpenetratingOccluders(worldBoxes, o))
+                occluded.objects.push_back(surfaceProxyOf(cutToBox(mScene.objects[p], box)));
+            scenes::Object surface = c.surface.scenes[std::size_t(o)].objects.front();
+            surface.levels.resize(1);
+            for (scenes::Scene* scene : {&alone, &occluded}) {
+                scene->materials = mScene.materials;
+                scene->textures = textureSizes;
+                scene->objects.push_back(surface);
+                scenes::updateStatistics(*scene);
+            }
+            const float distances[2] = {nearDistance, kOcclusionNearRadii * radius};
+            for (int d = 0; d < 2; ++d) {
+                for (int k = 0; k < kOcclusionDirections; ++k) {
+                    const scenes::Camera camera = cameraAt(c.occlusionDirections[std::size_t(k)], distances[d]);
+                    c.unoccluded[std::size_t(c.occlusionRow[std::size_t(o)] + d * kOcclusionDirections + k)] =
+                        float(unoccludedShareOf(alone, occluded, camera, mWidth, mHeight));
+                }
+            }
+        }
         for (int l = 0; l < count; ++l) c.unseen[mFirstLevel[o] + l] = unseen.contribution(0, l);
         for (Canonical::Proxy* proxy : proxies) {
             const timemodel::FeatureTable proxyUnseen(proxy->scenes[std::size_t(o)], away, mWidth, mHeight,
@@ -459,6 +612,29 @@ void SceneIndex::measureCanonical() {
     if (failure) std::rethrow_exception(failure);
 }
 
+double SceneIndex::unoccludedShare(int object, glm::vec3 eyeDirection, bool nearEye) const {
+    const Canonical& c = *mCanonical;
+    const int first = c.occlusionRow[std::size_t(object)];
+    if (first < 0) return 1.0;
+    const int row = first + (nearEye ? kOcclusionDirections : 0);
+    // Weights falling to 0 at kOcclusionReachCos from the eye's direction; the nearest direction
+    // alone where none is that near (the lattice leaves no such gap, but rounding might).
+    double sum = 0.0, weights = 0.0, nearestDot = -2.0, nearest = 1.0;
+    for (int k = 0; k < kOcclusionDirections; ++k) {
+        const float dot = glm::dot(c.occlusionDirections[std::size_t(k)], eyeDirection);
+        const double share = c.unoccluded[std::size_t(row + k)];
+        if (dot > nearestDot) {
+            nearestDot = dot;
+            nearest = share;
+        }
+        if (dot <= kOcclusionReachCos) continue;
+        const double w = double(dot - kOcclusionReachCos) * double(dot - kOcclusionReachCos);
+        sum += w * share;
+        weights += w;
+    }
+    return weights > 0.0 ? sum / weights : nearest;
+}
+
 void SceneIndex::beginFrame(const scenes::Camera& camera, FrameObjects& out) const {
     out.camera = camera;
     out.viewProjection = scenes::projectionMatrix(camera, float(mWidth) / float(mHeight)) * scenes::viewMatrix(camera);
@@ -488,9 +664,11 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
         return true;
     }
     const Canonical& c = *mCanonical;
-    glm::vec3 toEye = out.camera.position - shape.center;
+    const glm::vec3 toEye = out.camera.position - shape.center;
     const float length = glm::length(toEye);
+    const glm::vec3 eyeDirection = length > 0.0f ? toEye / length : glm::vec3(0.0f, 0.0f, 1.0f);
     if (length < kProxyWithinRadii * shape.radius) {
+        const double unoccluded = unoccludedShare(object, eyeDirection, true);
         const timemodel::FeatureTable sampled(c.sampled.scenes[std::size_t(object)], out.camera, mWidth, mHeight,
                                               c.sampled.depthPassCells, c.sampled.needed);
         const timemodel::FeatureTable surface(c.surface.scenes[std::size_t(object)], out.camera, mWidth, mHeight,
@@ -506,20 +684,24 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
             for (const timemodel::Feature feature : kSurfaceFeatures) {
                 f[feature] = c.unseen[index][feature] + covered[feature] * c.surface.scale[index][feature];
             }
+            if (unoccluded < 1.0) {
+                for (const timemodel::Feature feature : kDepthTestedFeatures)
+                    f[feature] = c.unseen[index][feature] + (f[feature] - c.unseen[index][feature]) * unoccluded;
+            }
         }
         return true;
     }
     // The canonical direction nearest to the eye as seen from the object.
-    toEye = length > 0.0f ? toEye / length : glm::vec3(0.0f, 0.0f, 1.0f);
     int best = 0;
     float bestDot = -2.0f;
     for (int k = 0; k < Canonical::kDirections; ++k) {
-        const float dot = glm::dot(c.directions[k], toEye);
+        const float dot = glm::dot(c.directions[k], eyeDirection);
         if (dot > bestDot) {
             bestDot = dot;
             best = k;
         }
     }
+    const double unoccluded = unoccludedShare(object, eyeDirection, false);
     for (int l = 0; l < count; ++l) {
         const int index = first + l;
         if (l > 0 && !mSameBoundsAsPrevious[index]) {
@@ -535,6 +717,10 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
         const FrameFeatures& w = c.seen[slot];
         const auto& exponent = c.exponent[std::size_t(index)];
         for (std::size_t k = 0; k < kFeatureCount; ++k) f.values[k] += w.values[k] * scale[exponent[k]];
+        if (unoccluded < 1.0) {
+            for (const timemodel::Feature feature : kDepthTestedFeatures)
+                f[feature] = c.unseen[index][feature] + (f[feature] - c.unseen[index][feature]) * unoccluded;
+        }
     }
     return true;
 }

@@ -77,4 +77,23 @@ TEST(DepthPass, SpansCountWhatTheBoxCountsOnRandomAndThinTriangles) {
     EXPECT_EQ(shares[1], 0.0);
 }
 
+TEST(DepthPass, TestedSharesAreWhatTheTableScalesShadedPixelsBy) {
+    // timemodel::depthTestedShares, public for the scheduler's set-up, is the share the table's
+    // shaded pixels take of its raster pixels at level 0: some of the harbor's ship is hidden.
+    const scenes::Scene scene = scenes::makeBuiltinScene("harbor");
+    const scenes::Camera& view = scene.views[1];
+    const std::vector<double> shares = lodopt::timemodel::depthTestedShares(scene, view, 256, 256, kCells);
+    const lodopt::timemodel::FeatureTable table(scene, view, 256, 256, kCells);
+    ASSERT_EQ(shares.size(), scene.objects.size());
+    int hidden = 0;
+    for (std::size_t o = 0; o < shares.size(); ++o) {
+        const auto& f = table.contribution(int(o), 0);
+        using lodopt::timemodel::Feature;
+        if (f[Feature::kRasterPixels] <= 0.0) continue;
+        EXPECT_NEAR(shares[o], f[Feature::kShadedPixels] / f[Feature::kRasterPixels], 1e-9) << "object " << o;
+        hidden += shares[o] < 0.99;
+    }
+    EXPECT_GT(hidden, 0);
+}
+
 }  // namespace

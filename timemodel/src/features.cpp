@@ -214,6 +214,13 @@ glm::mat4 viewProjectionMatrix(const scenes::Camera& camera, int width, int heig
 
 }  // namespace
 
+std::vector<double> depthTestedShares(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height,
+                                      int depthPassCells) {
+    assert(width > 0 && height > 0 && depthPassCells > 0);
+    return detail::depthPassShares(scene, viewProjectionMatrix(camera, width, height), float(width) / float(height),
+                                   depthPassCells);
+}
+
 FeatureTable::FeatureTable(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height,
                            int depthPassCells, const FeatureSet& needed) {
     assert(width > 0 && height > 0 && depthPassCells > 0);
@@ -274,8 +281,8 @@ FrameFeatures computeFrameFeatures(const scenes::Scene& scene, const scenes::Com
     const glm::mat4 viewProjection = viewProjectionMatrix(camera, width, height);
     FrameFeatures out;
     out[Feature::kBoundingBoxes] = double(scene.objects.size());
-    const std::vector<double> shares = detail::depthPassShares(scene, viewProjection, float(width) / float(height),
-                                                               FeatureTable::kDepthPassCells);
+    const std::vector<double> shares =
+        detail::depthPassShares(scene, viewProjection, float(width) / float(height), FeatureTable::kDepthPassCells);
     for (std::size_t o = 0; o < scene.objects.size(); ++o) {
         const int level = combination[o];
         if (level == scenes::kNotDrawn) continue;

@@ -28,9 +28,14 @@
 //           quads) its largest triangles: a sample covers a large surface in a few large
 //           triangles, in or out of it, and its depth pass sees through the gaps. Features that
 //           depend on the other objects (the time model's shaded pixels, decided by a depth pass
-//           over the whole frame) see the object alone, so Bounds over-counts occluded fragments; the
-//           measured-time feedback absorbs such a bias. tests/scheduler/scene_index_test.cpp
-//           bounds the error against Exact; docs/scheduler.md reports it on the scenes' paths.
+//           over the whole frame) see the object alone, except for what objects drawn before
+//           it and passing through its box hide (the sea a hull's lower half, a terrain a
+//           trunk's base, a neighbour's crown part of a crown): that share is measured at
+//           set-up from 64 directions at two distances, with stand-ins of both, and
+//           interpolated for the eye's direction. Occlusion by objects merely in front of it
+//           is not seen, so Bounds over-counts those fragments; the measured-time feedback
+//           absorbs such a bias. tests/scheduler/scene_index_test.cpp bounds the error against
+//           Exact; docs/scheduler.md reports it on the scenes' paths.
 #pragma once
 
 #include <array>
@@ -121,6 +126,10 @@ public:
 private:
     struct Canonical;
     void measureCanonical();
+    // Bounds mode: the share of `object`'s shaded fragments its interpenetrating occluders
+    // leave visible from `eyeDirection` (unit, from the object), for an eye near the object
+    // (its stand-ins measured) or not; 1 without such occluders.
+    double unoccludedShare(int object, glm::vec3 eyeDirection, bool nearEye) const;
 
     const scenes::Scene& mScene;
     int mWidth;

@@ -173,6 +173,13 @@ private:
     FrameFeatures mZero;
 };
 
+// Per object, the share of its level 0's fragments that pass the depth test when every object
+// is drawn at level 0 in object order: what the shaded features scale raster counts by, on a
+// grid whose longer side is `depthPassCells` (FeatureTable's). 1 for an object that rasterizes
+// no fragment. O(level-0 vertices + triangles), without the raster features' work.
+std::vector<double> depthTestedShares(const scenes::Scene& scene, const scenes::Camera& camera, int width, int height,
+                                      int depthPassCells);
+
 // Features of one frame without a table: walks only the drawn levels' geometry.
 // Same result as FeatureTable(scene, camera, width, height).features(combination).
 FrameFeatures computeFrameFeatures(const scenes::Scene& scene, const scenes::Combination& combination,
