@@ -272,9 +272,10 @@ void FrameScheduler::decideFlat() {
     const bool hysteresisRule = mParameters.switchControl.enabled && !mFilterControl.enabled;
     const bool hysteresis = hysteresisRule && mHavePrevious;
     decideFlatLevels(hysteresis);
-    // Refill: a frame the decision left far under the budget (out of the ±10% band Goal 1
-    // asks for) may switch. Holding it there would save a switch at the cost of a frame that
-    // misses the band anyway. First raise into the whole budget from where it stands; if the
+    // Refill: a frame the decision left far under the budget (under (1 − refillBelow) of it:
+    // at the default 0.05, where the few percent a measured time strays from its prediction
+    // take it out of the ±10% band Goal 1 asks for) may switch. Holding it there would save a
+    // switch at the cost of a frame that misses the band often. First raise into the whole budget from where it stands; if the
     // coarse steps of a few large objects leave it out of the band still, take the decision
     // without switch control when that comes nearer the budget, and then exchange levels
     // between objects (raising alone never lowers one object to raise another).

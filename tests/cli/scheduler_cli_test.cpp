@@ -311,7 +311,7 @@ TEST_F(SchedulerCli, ScheduleWritesFramesAndSummary) {
     EXPECT_EQ(summary["switch_rule"], "hysteresis");  // the default (docs/scheduler.md, Goal 4)
     EXPECT_EQ(summary["shading"], "pbr");              // renderer::kDefaultShading
     EXPECT_EQ(summary["switch_margin"].get<double>(), 0.05);
-    EXPECT_EQ(summary["switch_refill"].get<double>(), 0.1);
+    EXPECT_EQ(summary["switch_refill"].get<double>(), 0.05);  // docs/scheduler.md "Why r = 0.05"
     EXPECT_EQ(summary["feedback_beta"].get<double>(), 0.7);  // docs/scheduler.md "Feedback"
     EXPECT_GT(summary["decision_us"]["max"].get<double>(), 0.0);
     EXPECT_GT(summary["measured_ms"]["mean"].get<double>(), 0.0);

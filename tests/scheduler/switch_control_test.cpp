@@ -137,7 +137,7 @@ TEST(SwitchControl, PreventsFlickerAcrossAThreshold) {
     EXPECT_GE(without, 55);  // every frame but the first
     EXPECT_LE(flickerSwitches(true, SwitchRule::Vmi20), without / 4);
     EXPECT_LE(flickerSwitches(true, SwitchRule::Hysteresis), 1);  // 0 → 1 once, then held there
-    // The refill (default 0.1) gives that up on purpose: level 1 costs half of the frames' larger
+    // The refill (default 0.05) gives that up on purpose: level 1 costs half of the frames' larger
     // budget, out of the ±10% band, so the object follows a budget that swings by half every
     // frame. Budgets are constant in practice; docs/scheduler.md measures the paths.
     EXPECT_GE(flickerSwitches(true, SwitchRule::Hysteresis, SwitchControlParameters{}.refillBelow), 55);
