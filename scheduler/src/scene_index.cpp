@@ -21,7 +21,6 @@ using detail::cutToBox;
 using detail::interpenetratingOccluders;
 using detail::proxyOf;
 using detail::surfaceProxyOf;
-using detail::worldBox;
 using timemodel::FrameFeatures;
 using timemodel::kFeatureCount;
 
@@ -154,14 +153,17 @@ constexpr float kOcclusionReachCos = 0.883f;  // cos 28°
 // close by, the water in front of a hull hides more of it than from afar in the same direction.
 constexpr float kOcclusionNearRadii = 1.25f;
 
-// The features the depth pass scales: each is a raster count times the object's share of
-// fragments passing the depth test.
-constexpr std::array kDepthTestedFeatures = {timemodel::Feature::kShadedPixels, timemodel::Feature::kTexturedPixels,
-                                             timemodel::Feature::kShadedEdgePixels,
-                                             timemodel::Feature::kShadedPartialBlocks};
 bool readsDepthTestedFeature(const timemodel::FeatureSet& needed) {
-    return std::any_of(kDepthTestedFeatures.begin(), kDepthTestedFeatures.end(),
+    return std::any_of(timemodel::kDepthTestedFeatures.begin(), timemodel::kDepthTestedFeatures.end(),
                        [&](timemodel::Feature f) { return timemodel::contains(needed, f); });
+}
+
+// Scales what `f` adds over `unseen` in the depth-tested features by `unoccluded`, the share of
+// the object's fragments its interpenetrating occluders leave visible.
+void hideOccluded(FrameFeatures& f, const FrameFeatures& unseen, double unoccluded) {
+    if (unoccluded >= 1.0) return;
+    for (const timemodel::Feature feature : timemodel::kDepthTestedFeatures)
+        f[feature] = unseen[feature] + (f[feature] - unseen[feature]) * unoccluded;
 }
 
 // The share of the last object's depth-tested fragments in `occluded` that pass, over that in
@@ -262,12 +264,11 @@ void SceneIndex::measureCanonical() {
     }
     c.occlusionRow.assign(std::size_t(objectCount()), -1);
     std::vector<scenes::Bounds> worldBoxes;
-    for (const scenes::Object& object : mScene.objects) {
-        const scenes::Bounds& box = object.levels.front().stats.bounds;
-        worldBoxes.push_back(box.empty() ? box : worldBox(box, object.transform));
-    }
+    for (const scenes::Object& object : mScene.objects) worldBoxes.push_back(scenes::worldBounds(object, 0));
+    std::vector<std::vector<int>> occluders(static_cast<std::size_t>(objectCount()));
     for (int o = 0; measureOcclusion && o < objectCount(); ++o) {
-        if (interpenetratingOccluders(worldBoxes, o).empty()) continue;
+        occluders[std::size_t(o)] = interpenetratingOccluders(worldBoxes, o);
+        if (occluders[std::size_t(o)].empty()) continue;
         c.occlusionRow[std::size_t(o)] = int(c.unoccluded.size());
         c.unoccluded.resize(c.unoccluded.size() + 2 * kOcclusionDirections, 1.0f);
     }
@@ -307,7 +308,7 @@ void SceneIndex::measureCanonical() {
             box.min -= glm::vec3(shape.radius);
             box.max += glm::vec3(shape.radius);
             scenes::Scene alone, occluded;
-            for (int p : interpenetratingOccluders(worldBoxes, o))
+            for (int p : occluders[std::size_t(o)])
                 occluded.objects.push_back(surfaceProxyOf(cutToBox(mScene.objects[p], box)));
             scenes::Object surface = c.surface.scenes[std::size_t(o)].objects.front();
             surface.levels.resize(1);
@@ -505,10 +506,7 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
             for (const timemodel::Feature feature : kSurfaceFeatures) {
                 f[feature] = c.unseen[index][feature] + covered[feature] * c.surface.scale[index][feature];
             }
-            if (unoccluded < 1.0) {
-                for (const timemodel::Feature feature : kDepthTestedFeatures)
-                    f[feature] = c.unseen[index][feature] + (f[feature] - c.unseen[index][feature]) * unoccluded;
-            }
+            hideOccluded(f, c.unseen[index], unoccluded);
         }
         return true;
     }
@@ -538,10 +536,7 @@ bool SceneIndex::observe(int object, FrameObjects& out) const {
         const FrameFeatures& w = c.seen[slot];
         const auto& exponent = c.exponent[std::size_t(index)];
         for (std::size_t k = 0; k < kFeatureCount; ++k) f.values[k] += w.values[k] * scale[exponent[k]];
-        if (unoccluded < 1.0) {
-            for (const timemodel::Feature feature : kDepthTestedFeatures)
-                f[feature] = c.unseen[index][feature] + (f[feature] - c.unseen[index][feature]) * unoccluded;
-        }
+        hideOccluded(f, c.unseen[index], unoccluded);
     }
     return true;
 }

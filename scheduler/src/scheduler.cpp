@@ -275,10 +275,11 @@ void FrameScheduler::decideFlat() {
     // Refill: a frame the decision left far under the budget (under (1 − refillBelow) of it:
     // at the default 0.05, where the few percent a measured time strays from its prediction
     // take it out of the ±10% band Goal 1 asks for) may switch. Holding it there would save a
-    // switch at the cost of a frame that misses the band often. First raise into the whole budget from where it stands; if the
-    // coarse steps of a few large objects leave it out of the band still, take the decision
-    // without switch control when that comes nearer the budget, and then exchange levels
-    // between objects (raising alone never lowers one object to raise another).
+    // switch at the cost of a frame that misses the band often. First raise into the whole
+    // budget from where it stands; if the coarse steps of a few large objects leave it under
+    // still, take the decision without switch control when that comes nearer the budget, and
+    // then exchange levels between objects (raising alone never lowers one object to raise
+    // another).
     const double refill = mParameters.switchControl.refillBelow;
     const double bandFloor = budget * (1.0 - refill);
     if (!hysteresisRule || refill <= 0.0 || estimate(d.features) >= bandFloor) return;

@@ -134,20 +134,6 @@ scenes::Object surfaceProxyOf(const scenes::Object& object) {
     return proxy;
 }
 
-scenes::Bounds worldBox(const scenes::Bounds& box, const glm::mat4& transform) {
-    scenes::Bounds world;
-    world.min = glm::vec3(INFINITY);
-    world.max = glm::vec3(-INFINITY);
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 p(corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
-                          corner & 4 ? box.max.z : box.min.z);
-        const glm::vec3 w = glm::vec3(transform * glm::vec4(p, 1.0f));
-        world.min = glm::min(world.min, w);
-        world.max = glm::max(world.max, w);
-    }
-    return world;
-}
-
 std::vector<int> interpenetratingOccluders(const std::vector<scenes::Bounds>& worldBoxes, int object) {
     std::vector<int> occluders;
     const scenes::Bounds& box = worldBoxes[std::size_t(object)];

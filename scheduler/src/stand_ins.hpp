@@ -5,7 +5,6 @@
 #pragma once
 
 #include <cstddef>
-#include <glm/glm.hpp>
 #include <vector>
 
 #include "scenes/scene.hpp"
@@ -24,16 +23,13 @@ scenes::Object proxyOf(const scenes::Object& object);
 // clusters away: the city's ground) its largest triangles.
 scenes::Object surfaceProxyOf(const scenes::Object& object);
 
-// World-space axis-aligned box around `box` under `transform`.
-scenes::Bounds worldBox(const scenes::Bounds& box, const glm::mat4& transform);
-
 // What hides part of `object` from every view on the open side, whatever the camera: the
 // objects drawn before it (the renderer draws in object order, and only those fail its
 // fragments' depth test) whose level-0 box reaches into its own by more than 1% of its size
 // along every axis, such as the sea through the ship's hull or a terrain through a trunk's
 // base (a building standing on a flat ground does not). Objects merely in front of it from some
 // view are not here: that occlusion depends on the camera (scene_index.hpp).
-// `worldBoxes`: each object's level-0 world box (worldBox), empty for an empty level.
+// `worldBoxes`: each object's level-0 world box (scenes::worldBounds), empty for an empty level.
 std::vector<int> interpenetratingOccluders(const std::vector<scenes::Bounds>& worldBoxes, int object);
 
 // `occluder`'s level 0 cut to the triangles whose world box overlaps `box` (world space), so

@@ -169,8 +169,8 @@ struct FeatureWork {
 FeatureWork workFor(const FeatureSet& needed) {
     FeatureWork work;
     work.partialBlocks = contains(needed, Feature::kPartialBlocks) || contains(needed, Feature::kShadedPartialBlocks);
-    work.depthPass = contains(needed, Feature::kShadedPixels) || contains(needed, Feature::kTexturedPixels) ||
-                     contains(needed, Feature::kShadedEdgePixels) || contains(needed, Feature::kShadedPartialBlocks);
+    work.depthPass = std::any_of(kDepthTestedFeatures.begin(), kDepthTestedFeatures.end(),
+                                 [&](Feature feature) { return contains(needed, feature); });
     return work;
 }
 

@@ -77,6 +77,11 @@ const char* featureName(Feature feature);
 // All features in index order.
 const std::array<Feature, kFeatureCount>& allFeatures();
 
+// The features the depth pass scales: each is a raster count times the object's share of
+// fragments passing the depth test (depthTestedShares).
+inline constexpr std::array<Feature, 4> kDepthTestedFeatures = {
+    Feature::kShadedPixels, Feature::kTexturedPixels, Feature::kShadedEdgePixels, Feature::kShadedPartialBlocks};
+
 // A set of features, indexed like Feature: what a reader (a time model, TimeModel::readFeatures)
 // needs. A FeatureTable built for a set skips the work of the features outside it where that
 // saves time (the 4x4 block walk for the two partial-block features, the depth pass for the
