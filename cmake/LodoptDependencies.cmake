@@ -38,6 +38,12 @@ if(NOT EGL_FOUND)
   lodopt_missing(libegl-dev "EGL (headless OpenGL on a GPU)")
 endif()
 
+# Butteraugli (metrics/src/judge.cpp): the judge that scores answers and that no search reads.
+pkg_check_modules(JXL QUIET IMPORTED_TARGET libjxl)
+if(NOT JXL_FOUND)
+  lodopt_missing(libjxl-dev "libjxl (butteraugli)")
+endif()
+
 find_package(glm QUIET CONFIG)
 if(NOT glm_FOUND)
   lodopt_missing(libglm-dev "GLM")
@@ -92,33 +98,56 @@ if(LODOPT_BUILD_BENCH)
   endif()
 endif()
 
+# LODOPT_PAGMO and LODOPT_MPI: AUTO (the default) builds a feature when its package is found, ON
+# requires it (the quick start passes ON, so CI cannot silently lose it), OFF leaves it out even
+# when the package is installed.
+function(lodopt_feature_mode variable)
+  set(${variable} AUTO CACHE STRING "AUTO (if found), ON (required) or OFF")
+  set_property(CACHE ${variable} PROPERTY STRINGS AUTO ON OFF)
+  string(TOUPPER "${${variable}}" mode)
+  if(mode MATCHES "^(OFF|0|FALSE|NO|N)$")
+    set(mode OFF)
+  elseif(mode MATCHES "^(ON|1|TRUE|YES|Y)$")
+    set(mode ON)
+  elseif(NOT mode STREQUAL "AUTO")
+    message(FATAL_ERROR "lodopt: ${variable}=${${variable}}: expected AUTO, ON or OFF")
+  endif()
+  set(${variable}_MODE ${mode} PARENT_SCOPE)
+endfunction()
+
 # pagmo2's optimizers as peers of lodopt's searches (optimizer/pagmo, docs/optimizer.md "Peers:
-# pagmo2"). Optional: without libpagmo-dev lodopt builds without the pagmo:* algorithms.
-# LODOPT_PAGMO=ON requires it (the quick start's test build does, so CI cannot silently lose it).
-option(LODOPT_PAGMO "Require pagmo2 (libpagmo-dev) for the pagmo:* algorithms" OFF)
-find_package(pagmo QUIET CONFIG)
-if(pagmo_FOUND)
+# pagmo2").
+lodopt_feature_mode(LODOPT_PAGMO)
+set(LODOPT_WITH_PAGMO OFF)
+if(NOT LODOPT_PAGMO_MODE STREQUAL "OFF")
+  find_package(pagmo QUIET CONFIG)
+endif()
+if(LODOPT_PAGMO_MODE STREQUAL "OFF")
+  message(STATUS "lodopt: LODOPT_PAGMO=OFF: building without the pagmo:* algorithms")
+elseif(pagmo_FOUND)
   set(LODOPT_WITH_PAGMO ON)
   message(STATUS "lodopt: pagmo2 ${pagmo_VERSION} found: the pagmo:* algorithms are built")
-elseif(LODOPT_PAGMO)
+elseif(LODOPT_PAGMO_MODE STREQUAL "ON")
   lodopt_missing(libpagmo-dev "pagmo2 (LODOPT_PAGMO=ON)")
 else()
-  set(LODOPT_WITH_PAGMO OFF)
   message(STATUS "lodopt: pagmo2 not found (libpagmo-dev): building without the pagmo:* algorithms")
 endif()
 
-# Open MPI for `mpirun -np N lodopt sweep` (cli/src/sweep_queue.cpp, docs/sweep.md). Optional:
-# without it sweep runs on one machine and with --shard. LODOPT_MPI=ON requires it (the quick
-# start's builds do, so CI cannot silently lose the MPI tests).
-option(LODOPT_MPI "Require MPI (libopenmpi-dev) for sweeps under mpirun" OFF)
-find_package(MPI QUIET COMPONENTS C)
-if(MPI_C_FOUND)
+# Open MPI for `mpirun -np N lodopt sweep` (cli/src/sweep_queue.cpp, docs/sweep.md); without it
+# sweep runs on one machine and with --shard.
+lodopt_feature_mode(LODOPT_MPI)
+set(LODOPT_WITH_MPI OFF)
+if(NOT LODOPT_MPI_MODE STREQUAL "OFF")
+  find_package(MPI QUIET COMPONENTS C)
+endif()
+if(LODOPT_MPI_MODE STREQUAL "OFF")
+  message(STATUS "lodopt: LODOPT_MPI=OFF: sweep runs on one machine and in shards only")
+elseif(MPI_C_FOUND)
   set(LODOPT_WITH_MPI ON)
   find_program(LODOPT_MPIRUN NAMES mpirun mpiexec)
   message(STATUS "lodopt: MPI ${MPI_C_VERSION} found: sweep runs under mpirun")
-elseif(LODOPT_MPI)
+elseif(LODOPT_MPI_MODE STREQUAL "ON")
   lodopt_missing(libopenmpi-dev "MPI (LODOPT_MPI=ON)")
 else()
-  set(LODOPT_WITH_MPI OFF)
   message(STATUS "lodopt: MPI not found (libopenmpi-dev): sweep runs on one machine and in shards only")
 endif()

@@ -15,6 +15,7 @@ packages=(
   cmake ninja-build g++ pkg-config
   libosmesa6-dev libegl-dev libegl-mesa0 libopencv-dev libpng-dev libjpeg-dev libopenexr-dev
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libmeshoptimizer-dev libcli11-dev libdraco-dev libwebp-dev
+  libjxl-dev libjxl-devtools
   libpagmo-dev openmpi-bin libopenmpi-dev
   libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
   clang libclang-rt-14-dev ccache

@@ -79,6 +79,40 @@ void addWeightsOption(CLI::App& command, std::string& weights) {
         ->capture_default_str();
 }
 
+void addJudgeOptions(CLI::App& command, JudgeOptions& options, bool withSwitch) {
+    if (withSwitch) {
+        command.add_flag("!--no-judge", options.enabled,
+                         "Do not score the answers with the judge (butteraugli), which no search reads");
+    }
+    command.add_option("--judge-nits", options.parameters.intensityTargetNits,
+                       "Judge: the display's white in nits (butteraugli's intensity target)")
+        ->capture_default_str();
+    command.add_option("--judge-display-scale", options.parameters.displayScale,
+                       "Judge: display pixels per image pixel on each axis (1..16)")
+        ->capture_default_str();
+    command.add_option("--judge-pnorm", options.parameters.pnorm, "Judge: the p of the p-norm pooling the distance map")
+        ->capture_default_str();
+}
+
+std::optional<metrics::JudgeParameters> judgeParameters(const JudgeOptions& options) {
+    try {
+        metrics::validateJudgeParameters(options.parameters);
+    } catch (const metrics::MetricError& error) {
+        throw UsageError(error.what());
+    }
+    if (!options.enabled) return std::nullopt;
+    return options.parameters;
+}
+
+nlohmann::json judgeJson(const std::optional<metrics::JudgeResult>& result, const metrics::JudgeParameters& parameters) {
+    if (!result) return nullptr;
+    return {{"butteraugli", result->distance},
+            {"butteraugli_max", result->maxDistance},
+            {"pnorm", parameters.pnorm},
+            {"intensity_target_nits", parameters.intensityTargetNits},
+            {"display_scale", parameters.displayScale}};
+}
+
 void addResumeFlag(CLI::App& command, bool& resume, const std::string& what) {
     command.add_flag("--resume", resume, "Continue from " + what + " saved by an interrupted run");
 }

@@ -1,12 +1,14 @@
 // Shared plumbing of the lodopt commands: exit codes, error classes, JSON and table output.
 #pragma once
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "metrics/judge.hpp"
 #include "metrics/metrics.hpp"
 #include "renderer/renderer.hpp"
 
@@ -67,6 +69,20 @@ void addResumeFlag(CLI::App& command, bool& resume, const std::string& what);
 void parseWeights(const std::string& text, metrics::MetricParameters& parameters);
 // Parses "512x512".
 void parseSize(const std::string& text, int& width, int& height);
+// The judge (docs/metrics.md "The judge"): --judge-nits, --judge-display-scale, --judge-pnorm, and
+// --no-judge where a command judges its answers by default. Never read by a search.
+struct JudgeOptions {
+    bool enabled = true;
+    metrics::JudgeParameters parameters;
+};
+// `withSwitch`: the command also takes --no-judge.
+void addJudgeOptions(CLI::App& command, JudgeOptions& options, bool withSwitch = true);
+// The judge's parameters, or nothing with --no-judge; throws UsageError for a bad value.
+std::optional<metrics::JudgeParameters> judgeParameters(const JudgeOptions& options);
+// {"butteraugli": 3-norm distance, "butteraugli_max", "pnorm", "intensity_target_nits",
+//  "display_scale"}: one judge verdict as every command writes it; null without one.
+nlohmann::json judgeJson(const std::optional<metrics::JudgeResult>& result, const metrics::JudgeParameters& parameters);
+
 // --backend osmesa|egl (renderer::Backend) and --frame-clock auto|wall|gpu (renderer::FrameClock;
 // docs/renderer.md "Backends" and "Timing"): the platform a command draws on, and what a frame's
 // time is read from where it times frames.

@@ -7,6 +7,7 @@
 // saved in <out>/bench.checkpoint.json (bench_checkpoint.hpp) and an interrupt (SIGINT/SIGTERM)
 // stops there; --resume reuses the saved units, so the outputs equal an uninterrupted run's
 // (timings aside). The checkpoint is removed once bench.json is written.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -404,7 +405,8 @@ void runBench(const BenchOptions& bench) {
     InterruptGuard interruptGuard;
     const bool budgetGiven = options.budgetMs > 0.0;
     if (!budgetGiven) options.budgetMs = std::numeric_limits<double>::max();  // set below from the view
-    PreparedScene prepared = prepareScene(options);
+    const bool geometricErrors = std::any_of(grid.algorithms.begin(), grid.algorithms.end(), needsGeometricErrors);
+    PreparedScene prepared = prepareScene(options, geometricErrors);
     evaluation::SearchView context = prepareView(prepared, prepared.views[0], options);
     if (!budgetGiven) {
         options.budgetMs = defaultBudget(context);

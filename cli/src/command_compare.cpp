@@ -14,6 +14,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "checkpoint.hpp"
@@ -32,6 +33,7 @@ struct RunRecord {
     std::uint64_t seed = 0;
     optimizer::Result result;
     double wallSeconds = 0.0;
+    std::optional<double> judge;  // butteraugli of the run's best, rendered (never read by a search)
 };
 
 // Evaluations spent when the run's best first reached `target` (-1 if never).
@@ -62,6 +64,7 @@ nlohmann::json runToJson(const RunRecord& run) {
             {"cache_hits", result.cacheHits},
             {"iterations", result.iterations},
             {"stop_reason", std::string(optimizer::toString(result.stopReason))},
+            {"judge", run.judge ? nlohmann::json(*run.judge) : nlohmann::json(nullptr)},
             {"log", log}};
 }
 
@@ -70,6 +73,7 @@ RunRecord runFromJson(const nlohmann::json& saved) {
     run.algorithm = saved.at("algorithm").get<std::string>();
     run.seed = saved.at("seed").get<std::uint64_t>();
     run.wallSeconds = numberOrNaN(saved.at("wall_seconds"));
+    if (saved.contains("judge") && !saved["judge"].is_null()) run.judge = saved["judge"].get<double>();
     optimizer::Result& result = run.result;
     result.algorithm = run.algorithm;
     result.best = saved.at("best").get<optimizer::Combination>();
@@ -118,7 +122,11 @@ nlohmann::json checkpointIdentity(const OptimizeOptions& options, std::int64_t e
             {"seed-from", options.seedFrom},
             {"particles", options.particles},
             {"max-seconds", options.maxSeconds},
-            {"fill", effectiveFillProbability(options)}};
+            {"fill", effectiveFillProbability(options)},
+            {"judge", options.judge.enabled ? nlohmann::json{{"nits", options.judge.parameters.intensityTargetNits},
+                                                             {"display-scale", options.judge.parameters.displayScale},
+                                                             {"pnorm", options.judge.parameters.pnorm}}
+                                            : nlohmann::json(false)}};
 }
 
 // The saved runs of an earlier, interrupted compare, by runKey.
@@ -161,7 +169,7 @@ struct CompareOptions {
 // interrupt stops after it.
 std::vector<RunRecord> runAll(const CompareOptions& compare, const std::vector<std::string>& names,
                               const OptimizeOptions& runOptions, const evaluation::SearchView& context,
-                              const CheckpointFile& checkpoint, const nlohmann::json& identity,
+                              renderer::Renderer& renderer, const CheckpointFile& checkpoint, const nlohmann::json& identity,
                               std::map<std::string, RunRecord>& saved) {
     const std::size_t total = names.size() * std::size_t(compare.seeds);
     std::size_t done = 0;
@@ -180,8 +188,13 @@ std::vector<RunRecord> runAll(const CompareOptions& compare, const std::vector<s
             }
             const auto start = std::chrono::steady_clock::now();
             RunRecord record{name, std::uint64_t(seed), runAlgorithm(context, runOptions, name, std::uint64_t(seed)),
-                             0.0};
+                             0.0, std::nullopt};
             record.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (const std::optional<metrics::JudgeParameters> judge = judgeParameters(runOptions.judge)) {
+                const evaluation::ViewSetup& setup = *context.setup;
+                const renderer::Frame image = renderer.render(setup.toScene(record.result.best), setup.camera());
+                record.judge = evaluation::judgeFrame(image, setup.reference(), *judge).distance;
+            }
             saved[runKey(name, std::uint64_t(seed))] = record;
             runs.push_back(std::move(record));
             checkpoint.save(identity, runsToCheckpoint(saved));
@@ -205,18 +218,19 @@ nlohmann::json summarize(const std::vector<std::string>& names, const std::vecto
     nlohmann::json table = nlohmann::json::array();
     std::ostringstream csv, curves;
     csv << "algorithm,runs,median_fitness,min_fitness,max_fitness,median_evals_to_99pct,reached_99pct,"
-           "median_wall_seconds,median_evaluations\n";
+           "median_wall_seconds,median_evaluations,median_judge\n";
     curves << "algorithm,seed,iteration,evaluations,best_fitness,mean_fitness\n";
     csv << std::setprecision(8);
     curves << std::setprecision(8);
     for (const std::string& name : names) {
-        std::vector<double> fitness, wall, toReach, evals;
+        std::vector<double> fitness, wall, toReach, evals, judged;
         int reached = 0;
         for (const RunRecord& run : runs) {
             if (run.algorithm != name) continue;
             fitness.push_back(run.result.bestScore.fitness);
             wall.push_back(run.wallSeconds);
             evals.push_back(double(run.result.evaluations));
+            if (run.judge) judged.push_back(*run.judge);
             const std::int64_t k = evaluationsToReach(run.result, 0.99 * bestKnown);
             if (k >= 0) {
                 ++reached;
@@ -237,14 +251,23 @@ nlohmann::json summarize(const std::vector<std::string>& names, const std::vecto
                          {"median_evals_to_99pct", toReach.empty() ? nlohmann::json() : nlohmann::json(median(toReach))},
                          {"reached_99pct", reached},
                          {"median_wall_seconds", median(wall)},
-                         {"median_evaluations", median(evals)}});
+                         {"median_evaluations", median(evals)},
+                         {"median_judge", judged.empty() ? nlohmann::json() : nlohmann::json(median(judged))}});
         csv << name << ',' << fitness.size() << ',' << median(fitness) << ',' << minFitness << ',' << maxFitness << ','
             << (toReach.empty() ? std::string("") : std::to_string(median(toReach))) << ',' << reached << ','
-            << median(wall) << ',' << median(evals) << '\n';
+            << median(wall) << ',' << median(evals) << ','
+            << (judged.empty() ? std::string("") : std::to_string(median(judged))) << '\n';
     }
     scenes::writeTextAtomically((dir / "compare.csv").string(), csv.str());
     scenes::writeTextAtomically((dir / "curves.csv").string(), curves.str());
     return table;
+}
+
+// The judge's median distance, three decimals.
+std::string formatJudge(double distance) {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(3) << distance;
+    return text.str();
 }
 
 void printCompare(const nlohmann::json& document, const std::filesystem::path& dir) {
@@ -258,7 +281,7 @@ void printCompare(const nlohmann::json& document, const std::filesystem::path& d
         nameWidth = std::max(nameWidth, int(row["algorithm"].get<std::string>().size()) + 2);
     }
     std::cout << std::left << std::setw(nameWidth) << "algorithm" << std::right << std::setw(10) << "median" << std::setw(10)
-              << "min" << std::setw(10) << "max" << std::setw(14) << "evals→99%" << std::setw(10) << "wall s\n";
+              << "min" << std::setw(10) << "max" << std::setw(14) << "evals→99%" << std::setw(10) << "wall s" << std::setw(10) << "judge\n";
     for (const nlohmann::json& row : document["algorithms"]) {
         std::cout << std::left << std::setw(nameWidth) << row["algorithm"].get<std::string>() << std::right << std::fixed
                   << std::setprecision(4) << std::setw(10) << row["median_fitness"].get<double>() << std::setw(10)
@@ -267,7 +290,9 @@ void printCompare(const nlohmann::json& document, const std::filesystem::path& d
                   << (row["median_evals_to_99pct"].is_null()
                           ? std::string("-")
                           : std::to_string(int(row["median_evals_to_99pct"].get<double>())))
-                  << std::setw(10) << std::setprecision(3) << row["median_wall_seconds"].get<double>() << "\n";
+                  << std::setw(10) << std::setprecision(3) << row["median_wall_seconds"].get<double>() << std::setw(10)
+                  << (row["median_judge"].is_null() ? std::string("-") : formatJudge(row["median_judge"].get<double>()))
+                  << "\n";
         std::cout.unsetf(std::ios::floatfield);
     }
     std::cout << "wrote " << (dir / "compare.json").string() << ", compare.csv, curves.csv\n";
@@ -292,9 +317,11 @@ void runCompare(const CompareOptions& compare) {
     checkpoint.restore(compare.resume, compare.output.quiet || compare.output.json, identity,
                        [&](const nlohmann::json& document) { saved = runsFromCheckpoint(document); });
     InterruptGuard interruptGuard;
-    PreparedScene prepared = prepareScene(runOptions);
+    const bool geometricErrors = std::any_of(names.begin(), names.end(), needsGeometricErrors);
+    PreparedScene prepared = prepareScene(runOptions, geometricErrors);
     evaluation::SearchView context = prepareView(prepared, prepared.views[0], runOptions);
-    const std::vector<RunRecord> runs = runAll(compare, names, runOptions, context, checkpoint, identity, saved);
+    const std::vector<RunRecord> runs =
+        runAll(compare, names, runOptions, context, *prepared.renderer, checkpoint, identity, saved);
 
     double bestKnown = 0.0;
     for (const RunRecord& run : runs) bestKnown = std::max(bestKnown, run.result.bestScore.fitness);

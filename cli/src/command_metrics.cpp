@@ -1,5 +1,5 @@
 // lodopt metrics A.png B.png: every image metric of candidate A against reference B
-// (docs/metrics.md), and the fused fitness.
+// (docs/metrics.md), the fused fitness, and the judge's distance (butteraugli, metrics/judge.hpp).
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -21,6 +21,7 @@ struct MetricsOptions {
     std::string boundaryMode = "histogram";
     std::string informationMode = "histogram";
     int tolerance = 8;
+    JudgeOptions judge;
     OutputOptions output;
 };
 
@@ -94,12 +95,18 @@ void runMetrics(const MetricsOptions& options) {
     renderer::LoadedImage candidate = loadImage(options.candidate);
     renderer::LoadedImage reference = loadImage(options.reference);
     matchChannels(candidate, options.candidate, reference, options.reference);
+    const metrics::JudgeParameters judgeSettings = *judgeParameters(options.judge);
     metrics::MetricResult result;
+    std::optional<metrics::JudgeResult> verdict;
     try {
         result = metrics::evaluate(
             metrics::makeImageView(candidate.pixels.data(), candidate.width, candidate.height, candidate.channels),
             metrics::makeImageView(reference.pixels.data(), reference.width, reference.height, reference.channels),
             parameters);
+        verdict = metrics::judge(
+            metrics::makeImageView(candidate.pixels.data(), candidate.width, candidate.height, candidate.channels),
+            metrics::makeImageView(reference.pixels.data(), reference.width, reference.height, reference.channels),
+            judgeSettings);
     } catch (const metrics::MetricError& error) {
         throw UsageError(error.what());
     }
@@ -129,7 +136,8 @@ void runMetrics(const MetricsOptions& options) {
                    {"false_positives", result.falsePositives},
                    {"false_negatives", result.falseNegatives},
                    {"match_tolerance", options.tolerance},
-                   {"fitness", result.fitness}});
+                   {"fitness", result.fitness},
+                   {"judge", judgeJson(verdict, judgeSettings)}});
         return;
     }
     std::cout << "candidate " << options.candidate << " vs reference " << options.reference << " (" << candidate.width
@@ -152,6 +160,10 @@ void runMetrics(const MetricsOptions& options) {
                   static_cast<unsigned long long>(result.falseNegatives), options.tolerance);
     std::cout << line;
     std::snprintf(line, sizeof line, "fitness %.6f\n", result.fitness);
+    std::cout << line;
+    std::snprintf(line, sizeof line, "judge: butteraugli %g-norm %.6f, max %.6f (%g nits, display scale %d)\n",
+                  judgeSettings.pnorm, verdict->distance, verdict->maxDistance, judgeSettings.intensityTargetNits,
+                  judgeSettings.displayScale);
     std::cout << line;
 }
 
@@ -180,6 +192,7 @@ void addMetricsCommand(CLI::App& app) {
     command->add_option("--tolerance", options->tolerance, "Largest channel difference of matching pixels")
         ->check(CLI::Range(0, 255))
         ->capture_default_str();
+    addJudgeOptions(*command, options->judge, false);
     addOutputOptions(*command, options->output);
     command->callback([options] { runMetrics(*options); });
 }

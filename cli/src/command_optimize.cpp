@@ -78,6 +78,7 @@ void addSearchOptions(CLI::App& command, OptimizeOptions& options) {
         ->capture_default_str();
     command.add_option("--particles", options.particles, "GA-PSO swarm size")->check(CLI::Range(1, 10000));
     addFillOption(command, options);
+    addJudgeOptions(command, options.judge);
 }
 
 void addFillOption(CLI::App& command, OptimizeOptions& options) {

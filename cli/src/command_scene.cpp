@@ -1,15 +1,24 @@
 // lodopt scene info|export: what a scene holds, and writing it back as glTF.
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "cli_common.hpp"
 #include "scenes/builtin.hpp"
+#include "scenes/geometric_error.hpp"
 #include "scenes/gltf_io.hpp"
 
 namespace lodopt::cli {
 namespace {
 
 nlohmann::json vec3Json(const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+
+// A deviation in world units, four significant digits.
+std::string formatDeviation(float deviation) {
+    std::ostringstream text;
+    text << std::setprecision(4) << deviation;
+    return text.str();
+}
 
 nlohmann::json sceneInfoJson(const scenes::Scene& scene) {
     nlohmann::json objects = nlohmann::json::array();
@@ -27,6 +36,7 @@ nlohmann::json sceneInfoJson(const scenes::Scene& scene) {
                 {"sphere_center", vec3Json(stats.bounds.sphereCenter)},
                 {"sphere_radius", stats.bounds.sphereRadius},
                 {"simplification_error", level.simplificationError},
+                {"geometric_error", level.geometricError ? nlohmann::json(*level.geometricError) : nlohmann::json()},
             };
             entry["screen_coverage"] = level.screenCoverage ? nlohmann::json(*level.screenCoverage) : nlohmann::json();
             levels.push_back(entry);
@@ -60,12 +70,13 @@ void printSceneInfo(const scenes::Scene& scene) {
     for (std::size_t o = 0; o < scene.objects.size() && o < maxRows; ++o) {
         const scenes::Object& object = scene.objects[o];
         std::cout << "  " << object.name << " (" << object.levels.size() << " levels)\n";
-        std::cout << "    level  vertices  triangles  texture_bytes  draw_calls  coverage\n";
+        std::cout << "    level  vertices  triangles  texture_bytes  draw_calls  deviation  coverage\n";
         for (std::size_t l = 0; l < object.levels.size(); ++l) {
             const scenes::Level& level = object.levels[l];
             std::cout << "    " << std::setw(5) << l << std::setw(10) << level.stats.vertices << std::setw(11)
                       << level.stats.triangles << std::setw(15) << level.stats.textureBytes << std::setw(12)
-                      << level.stats.drawCalls << "  "
+                      << level.stats.drawCalls << std::setw(11)
+                      << (level.geometricError ? formatDeviation(*level.geometricError) : std::string("-")) << "  "
                       << (level.screenCoverage ? std::to_string(*level.screenCoverage) : std::string("-")) << "\n";
         }
     }
@@ -97,6 +108,7 @@ void addSceneCommand(CLI::App& app) {
     addOutputOptions(*infoCommand, info->output);
     infoCommand->callback([info] {
         scenes::Scene loaded = scenes::loadScene(info->scene, info->seed);
+        scenes::computeGeometricErrors(loaded);
         if (info->output.json) printJson(sceneInfoJson(loaded));
         else printSceneInfo(loaded);
     });

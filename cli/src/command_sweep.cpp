@@ -46,7 +46,11 @@ nlohmann::json settingsSignature(const SweepOptions& o) {
             {"stable", p.stableIterations}, {"max-seconds", p.maxSeconds}, {"weights", p.weights},
             {"profile", p.profile},     {"model", p.model},              {"eval", p.evalPath},
             {"seed-from", p.seedFrom},  {"particles", p.particles},      {"paper", p.paper},
-            {"fill", effectiveFillProbability(p)}};
+            {"fill", effectiveFillProbability(p)},
+            {"judge", p.judge.enabled ? nlohmann::json{{"nits", p.judge.parameters.intensityTargetNits},
+                                                       {"display-scale", p.judge.parameters.displayScale},
+                                                       {"pnorm", p.judge.parameters.pnorm}}
+                                      : nlohmann::json(false)}};
 }
 
 std::vector<scenes::Camera> camerasFromFile(const std::string& file) {

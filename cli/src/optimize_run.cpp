@@ -10,6 +10,7 @@
 #include "optimizer/gapso.hpp"
 #include "optimizer/search.hpp"
 #include "scenes/builtin.hpp"
+#include "scenes/geometric_error.hpp"
 #include "time_profile.hpp"
 
 namespace lodopt::cli {
@@ -27,7 +28,11 @@ void checkAlgorithmName(const std::string& name) {
     throw UsageError("unknown algorithm '" + name + "' (expected one of: " + algorithmList() + ")");
 }
 
-PreparedScene prepareScene(const OptimizeOptions& options) {
+bool needsGeometricErrors(const std::string& algorithm) {
+    return algorithm == "pixelerror" || algorithm == "unreal-auto";
+}
+
+PreparedScene prepareScene(const OptimizeOptions& options, bool geometricErrors) {
     PreparedScene prepared;
     parseSize(options.size, prepared.settings.width, prepared.settings.height);
     prepared.settings.shading = renderer::parseShading(options.shading);
@@ -40,6 +45,7 @@ PreparedScene prepareScene(const OptimizeOptions& options) {
         prepared.views.push_back(scenes::findView(prepared.scene, options.view));
     }
     if (prepared.scene.objects.empty()) throw UsageError("scene '" + prepared.scene.name + "' has no objects");
+    if (geometricErrors || needsGeometricErrors(options.algorithm)) scenes::computeGeometricErrors(prepared.scene);
     prepared.renderer = std::make_unique<renderer::Renderer>(prepared.scene, prepared.settings);
     TimeEstimator estimator = loadTimeEstimator(options.profile, options.model, prepared.scene.name, prepared.settings,
                                                 prepared.renderer.get(), std::cerr);
@@ -55,6 +61,7 @@ evaluation::SearchViewSettings searchViewSettings(const OptimizeOptions& options
     settings.threads = options.threads;
     settings.states = options.evalStates;
     settings.budgetMs = options.budgetMs;
+    settings.judge = judgeParameters(options.judge);
     return settings;
 }
 
@@ -202,6 +209,7 @@ ViewRun runOptimizer(PreparedScene& prepared, int view, const OptimizeOptions& o
         {"combination", answer.levels},
         {"fitness", full.fitness},
         {"search_fitness", result.bestScore.fitness},
+        {"judge", judgeJson(answer.judge, options.judge.parameters)},
         {"ssim", {{"computed", full.ssimComputed}, {"value", full.ssim}, {"fidelity", full.ssimFidelity}}},
         {"boundary_entropy", entropyJson(full.boundaryEntropy)},
         {"information_entropy", entropyJson(full.informationEntropy)},
@@ -242,6 +250,11 @@ void printOptimizeSummary(std::ostream& out, const nlohmann::json& result) {
     out << "  fitness " << result["fitness"].get<double>() << " (ssim " << result["ssim"]["fidelity"].get<double>()
         << ", boundary " << result["boundary_entropy"]["fidelity"].get<double>() << ", information "
         << result["information_entropy"]["fidelity"].get<double>() << ")\n";
+    if (result.contains("judge") && !result["judge"].is_null()) {
+        const nlohmann::json& judge = result["judge"];
+        out << "  judge: butteraugli " << judge["pnorm"].get<double>() << "-norm " << judge["butteraugli"].get<double>()
+            << ", max " << judge["butteraugli_max"].get<double>() << " (lower is better; not read by the search)\n";
+    }
     out << std::setprecision(2) << "  predicted " << result["predicted_ms"].get<double>() << " ms ("
         << result["time_model"].get<std::string>() << "), " << result["evaluations"].get<std::int64_t>()
         << " evaluations, " << result["cache_hits"].get<std::int64_t>() << " cache hits, "

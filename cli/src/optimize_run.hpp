@@ -56,6 +56,7 @@ struct OptimizeOptions {
     int particles = 0;  // 0 = the algorithm's default
     // GA-PSO's fill probability (GapsoParameters::fillProbability); < 0 = the default (0 with --paper).
     double fillProbability = -1.0;
+    JudgeOptions judge;  // scores the answers kept (result.json "judge"); never the search
 };
 // The fill probability a swarm run with these options uses (optimizer::effectiveFillProbability).
 double effectiveFillProbability(const OptimizeOptions& options);
@@ -83,7 +84,11 @@ struct PreparedScene {
     std::string timeModelName;
     std::unique_ptr<renderer::Renderer> renderer;
 };
-PreparedScene prepareScene(const OptimizeOptions& options);
+// The engines' rules (pixelerror, unreal-auto) read each level's measured geometric error.
+bool needsGeometricErrors(const std::string& algorithm);
+// Loads the scene, its renderer and time model; measures the levels' geometric errors
+// (scenes::computeGeometricErrors) when `geometricErrors` or options.algorithm needs them.
+PreparedScene prepareScene(const OptimizeOptions& options, bool geometricErrors = false);
 
 // The view preparation these options ask for (evaluation path, threads, states, budget).
 evaluation::SearchViewSettings searchViewSettings(const OptimizeOptions& options);

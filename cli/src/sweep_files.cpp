@@ -103,6 +103,7 @@ nlohmann::json viewJson(const SweepPlan& plan, std::size_t view, const evaluatio
             {"feasible", outcome.feasible},
             {"levels", outcome.levels},
             {"fitness", outcome.fitness},
+            {"judge", outcome.judgeDistance ? nlohmann::json(*outcome.judgeDistance) : nlohmann::json(nullptr)},
             {"predicted_ms", outcome.predictedMs},
             {"searched_objects", outcome.searchedObjects},
             {"searched", outcome.searched},
@@ -157,7 +158,7 @@ MergeSummary mergeViews(const SweepPlan& plan, const std::vector<std::filesystem
     std::ostringstream csv, timing;
     csv << std::setprecision(17);
     csv << "view,name,position_x,position_y,position_z,target_x,target_y,target_z,fov_y_degrees,fitness,"
-           "predicted_ms,feasible,searched_objects,evaluations,levels,screen_sizes,searched\n";
+           "predicted_ms,feasible,searched_objects,evaluations,levels,screen_sizes,searched,judge\n";
     timing << "view,rank,setup_seconds,search_seconds,evaluations\n";
     std::vector<std::size_t> missing;
     MergeSummary summary;
@@ -177,6 +178,7 @@ MergeSummary mergeViews(const SweepPlan& plan, const std::vector<std::filesystem
                               {"feasible", saved.value("feasible", true)},
                               {"levels", saved["levels"]},
                               {"fitness", saved["fitness"]},
+                              {"judge", saved.value("judge", nlohmann::json(nullptr))},
                               {"predicted_ms", saved["predicted_ms"]},
                               {"searched_objects", saved["searched_objects"]},
                               {"searched", saved["searched"]},
@@ -189,7 +191,8 @@ MergeSummary mergeViews(const SweepPlan& plan, const std::vector<std::filesystem
             << saved["fitness"].dump() << "," << saved["predicted_ms"].dump() << ","
             << (saved.value("feasible", true) ? 1 : 0) << "," << saved["searched_objects"].dump()
             << "," << saved["evaluations"].dump() << "," << joined(saved["levels"]) << ","
-            << joined(saved["screen_sizes"]) << "," << joined(saved["searched"]) << "\n";
+            << joined(saved["screen_sizes"]) << "," << joined(saved["searched"]) << ","
+            << (saved.value("judge", nlohmann::json(nullptr)).is_null() ? std::string() : saved["judge"].dump()) << "\n";
         timing << k << "," << saved.value("rank", 0) << "," << saved.value("setup_seconds", 0.0) << ","
                << saved.value("search_seconds", 0.0) << "," << saved["evaluations"].dump() << "\n";
         const double fitness = saved["fitness"].get<double>();

@@ -437,6 +437,11 @@ optimizer::Score FullRenderEvaluator::evaluate(const optimizer::Combination& com
     return toScore(metricsOf(combination));
 }
 
+metrics::JudgeResult judgeFrame(const renderer::Frame& candidate, const renderer::Frame& reference,
+                                const metrics::JudgeParameters& parameters) {
+    return metrics::judge(viewOf(candidate), viewOf(reference), parameters);
+}
+
 std::vector<optimizer::VariableHints> computeHints(const ViewSetup& setup) {
     const scenes::Scene& scene = setup.scene();
     const scenes::Camera& camera = setup.camera();
@@ -454,7 +459,20 @@ std::vector<optimizer::VariableHints> computeHints(const ViewSetup& setup) {
         // Dong et al.'s s: the projected area, here in hundreds of covered pixels at level 0.
         hint.projectedArea = std::max(double(setup.objects()[object].referencePixels) / 100.0, 1e-3);
         hint.screenCoverage = scenes::screenSize(bounds, camera);
+        hint.boundingRadius = std::max(double(bounds.sphereRadius), 1e-9);
+        // Pixels per world unit at the object's nearest point (its world box; the near plane
+        // when the eye is inside), where its deviation shows largest.
+        const glm::vec3 nearest = glm::clamp(camera.position, bounds.min, bounds.max);
+        const double nearestDistance =
+            std::max(double(glm::length(nearest - camera.position)), double(std::max(camera.nearPlane, 1e-6f)));
+        const double tanHalfFov = std::tan(glm::radians(double(camera.fovYDegrees)) / 2.0);
+        hint.pixelsPerWorldUnit = double(setup.height()) / (2.0 * nearestDistance * tanHalfFov);
         const std::vector<int>& options = setup.objects()[object].optionLevels;
+        bool allDeviations = true;
+        for (int level : options) allDeviations = allDeviations && sceneObject.levels[level].geometricError.has_value();
+        if (allDeviations) {
+            for (int level : options) hint.levelDeviation.push_back(double(*sceneObject.levels[level].geometricError));
+        }
         bool allCoverage = true;
         for (int level : options) allCoverage = allCoverage && sceneObject.levels[level].screenCoverage.has_value();
         const double triangles0 = double(std::max<std::uint64_t>(sceneObject.levels[0].stats.triangles, 1));

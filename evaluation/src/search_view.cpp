@@ -50,6 +50,7 @@ ViewAnswer optimizeView(const scenes::Scene& scene, const scenes::Camera& camera
     FullRenderEvaluator full(setup, renderer, metrics);
     answer.metrics = full.metricsOf(answer.result.best);
     answer.image = renderer.render(answer.levels, setup.camera());
+    if (settings.judge) answer.judge = judgeFrame(answer.image, setup.reference(), *settings.judge);
     return answer;
 }
 

@@ -24,6 +24,7 @@ SweepViewOutcome sweepView(const scenes::Scene& scene, const scenes::Camera& cam
         outcome.levels = std::move(answer.levels);
         outcome.fitness = answer.metrics.fitness;
         outcome.predictedMs = answer.result.predictedMs;
+        if (answer.judge) outcome.judgeDistance = answer.judge->distance;
         outcome.searchedObjects = int(answer.view.problem.levelCounts.size());
         outcome.searched = answer.view.setup->variableObjects();
         outcome.evaluations = answer.result.evaluations;
@@ -39,6 +40,10 @@ SweepViewOutcome sweepView(const scenes::Scene& scene, const scenes::Camera& cam
         outcome.searched = setup.variableObjects();
         FullRenderEvaluator full(setup, renderer, metrics);
         outcome.fitness = full.metricsOf(setup.fromScene(outcome.levels)).fitness;
+        if (settings.judge) {
+            const renderer::Frame image = renderer.render(outcome.levels, camera);
+            outcome.judgeDistance = judgeFrame(image, setup.reference(), *settings.judge).distance;
+        }
         outcome.setupSeconds = std::chrono::duration<double>(Clock::now() - start).count();
     }
     outcome.screenSizes.reserve(scene.objects.size());

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "optimizer/baselines.hpp"
+#include "optimizer/engine_rules.hpp"
 #include "optimizer/gapso.hpp"
 #include "optimizer/heuristics.hpp"
 #include "optimizer/mckp.hpp"
@@ -85,7 +86,8 @@ struct Registered {
 // lodopt's own names, then the registered ones.
 std::vector<std::string>& names() {
     static std::vector<std::string> list = {"gapso",      "pso",        "ga",   "greedy",     "distance",
-                                            "importance", "screensize", "mckp", "exhaustive", "random"};
+                                            "importance", "screensize", "pixelerror", "unreal-auto", "mckp",
+                                            "exhaustive", "random"};
     return list;
 }
 
@@ -127,6 +129,8 @@ std::unique_ptr<Algorithm> makeAlgorithm(std::string_view name, std::uint64_t se
     if (name == "distance") return std::make_unique<DistanceHeuristic>();
     if (name == "importance") return std::make_unique<ImportanceHeuristic>();
     if (name == "screensize") return std::make_unique<ScreenSizeHeuristic>();
+    if (name == "pixelerror") return std::make_unique<EngineRuleHeuristic>(EngineRule::PixelError);
+    if (name == "unreal-auto") return std::make_unique<EngineRuleHeuristic>(EngineRule::UnrealAuto);
     if (name == "mckp") return std::make_unique<Mckp>();
     if (name == "exhaustive") return std::make_unique<Exhaustive>();
     if (name == "random") {

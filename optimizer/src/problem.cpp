@@ -47,6 +47,8 @@ void validateHints(const VariableHints& hints, std::size_t variable, int levelCo
     checkOptional(hints.distance, "distance", false);
     checkOptional(hints.projectedArea, "projectedArea", true);
     checkOptional(hints.screenCoverage, "screenCoverage", false);
+    checkOptional(hints.boundingRadius, "boundingRadius", true);
+    checkOptional(hints.pixelsPerWorldUnit, "pixelsPerWorldUnit", true);
     if (!std::isfinite(hints.viewAngleRadians) || hints.viewAngleRadians < 0.0 ||
         hints.viewAngleRadians >= 1.5707963267948966) {
         throw ProblemError(where + ".viewAngleRadians = " + std::to_string(hints.viewAngleRadians) +
@@ -67,6 +69,7 @@ void validateHints(const VariableHints& hints, std::size_t variable, int levelCo
     };
     checkPerLevel(hints.levelScreenCoverage, "levelScreenCoverage");
     checkPerLevel(hints.levelPixelError, "levelPixelError");
+    checkPerLevel(hints.levelDeviation, "levelDeviation");
     for (std::size_t l = 1; l < hints.levelScreenCoverage.size(); ++l) {
         if (hints.levelScreenCoverage[l] > hints.levelScreenCoverage[l - 1]) {
             throw ProblemError(where + ".levelScreenCoverage[" + std::to_string(l) +

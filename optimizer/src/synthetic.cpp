@@ -121,6 +121,14 @@ SyntheticProblem::SyntheticProblem(const SyntheticParameters& parameters) {
         for (std::size_t l = 0; l < hints.levelPixelError.size(); ++l) {
             hints.levelPixelError[l] = degradation[i][l] * 0.05 * hints.screenCoverage * 512.0;
         }
+        // The same error as a deviation of an object of radius 1 (no random draw: the problem's
+        // other numbers stay those of every earlier version).
+        hints.boundingRadius = 1.0;
+        hints.pixelsPerWorldUnit = std::max(hints.screenCoverage, 1e-3) * 256.0;
+        hints.levelDeviation.resize(hints.levelPixelError.size());
+        for (std::size_t l = 0; l < hints.levelDeviation.size(); ++l) {
+            hints.levelDeviation[l] = hints.levelPixelError[l] / hints.pixelsPerWorldUnit;
+        }
     }
 
     mEvaluator = std::make_unique<InteractionEvaluator>(std::move(degradation), std::move(weights), std::move(pairs));

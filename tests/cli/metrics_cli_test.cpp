@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -106,9 +107,58 @@ TEST_F(MetricsCli, TextOutputListsTheComponents) {
     const std::string a = scene("a.ppm", 32, 3), b = scene("b.ppm", 32, 7);
     const CommandResult run = runLodopt("metrics " + a + " " + b);
     ASSERT_EQ(run.exitCode, 0);
-    for (const char* word : {"ssim", "boundary_entropy", "information_entropy", "precision", "recall", "fitness"}) {
-        EXPECT_NE(run.output.find(word), std::string::npos) << word;
+    const nlohmann::json json = nlohmann::json::parse(runLodopt("metrics " + a + " " + b + " --json").output);
+    // Each component's row: its name, then candidate, reference and fidelity as numbers equal to
+    // the JSON's (a NaN or a missing value fails here).
+    for (const char* word : {"ssim", "boundary_entropy", "information_entropy"}) {
+        const std::size_t at = run.output.find(std::string(word) + " ");
+        ASSERT_NE(at, std::string::npos) << word;
+        std::istringstream row(run.output.substr(at + std::string(word).size()));
+        double candidate = 0, reference = 0, fidelity = 0;
+        ASSERT_TRUE(row >> candidate >> reference >> fidelity) << word;
+        EXPECT_NEAR(fidelity, json[word]["fidelity"].get<double>(), 1e-6) << word;
+        EXPECT_NEAR(candidate, json[word]["candidate"].get<double>(), 1e-6) << word;
     }
+    for (const char* word : {"precision", "recall", "fitness"}) {
+        const std::size_t at = run.output.find(std::string(word) + " ");
+        ASSERT_NE(at, std::string::npos) << word;
+        double value = -1;
+        std::istringstream(run.output.substr(at + std::string(word).size())) >> value;
+        EXPECT_NEAR(value, json[word].get<double>(), 1e-6) << word;
+    }
+    const std::size_t judge = run.output.find("judge: butteraugli 3-norm ");
+    ASSERT_NE(judge, std::string::npos) << run.output;
+    double distance = -1;
+    std::istringstream(run.output.substr(judge + 26)) >> distance;
+    EXPECT_NEAR(distance, json["judge"]["butteraugli"].get<double>(), 1e-6);
+}
+
+// The judge in process gives what Debian's butteraugli_main prints for the same two files.
+TEST_F(MetricsCli, JudgeEqualsButteraugliMain) {
+    const std::string reference = scene("reference.ppm", 64, 3), candidate = scene("candidate.ppm", 64, 9);
+    const CommandResult run = runLodopt("metrics " + candidate + " " + reference + " --json");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const nlohmann::json judge = nlohmann::json::parse(run.output)["judge"];
+    EXPECT_EQ(judge["pnorm"], 3.0);
+    EXPECT_EQ(judge["intensity_target_nits"], 80.0);
+    const CommandResult tool = lodopt::cli_test::runShell("butteraugli_main " + reference + " " + candidate +
+                                                          " --pnorm 3 2>/dev/null");
+    ASSERT_EQ(tool.exitCode, 0) << "butteraugli_main (libjxl-devtools, the quick start installs it): " << tool.output;
+    std::istringstream lines(tool.output);
+    double maxDistance = -1, pnorm = -1;
+    std::string label;
+    ASSERT_TRUE(lines >> maxDistance >> label >> pnorm) << tool.output;
+    EXPECT_EQ(label, "3-norm:");
+    EXPECT_GT(pnorm, 0.0);
+    EXPECT_NEAR(judge["butteraugli"].get<double>(), pnorm, 1e-5 * pnorm);
+    EXPECT_NEAR(judge["butteraugli_max"].get<double>(), maxDistance, 1e-5 * maxDistance);
+    const nlohmann::json same =
+        nlohmann::json::parse(runLodopt("metrics " + reference + " " + reference + " --json").output)["judge"];
+    EXPECT_EQ(same["butteraugli"].get<double>(), 0.0);
+    const nlohmann::json brighter = nlohmann::json::parse(
+        runLodopt("metrics " + candidate + " " + reference + " --judge-nits 250 --json").output)["judge"];
+    EXPECT_EQ(brighter["intensity_target_nits"], 250.0);
+    EXPECT_NE(brighter["butteraugli"].get<double>(), judge["butteraugli"].get<double>());
 }
 
 TEST_F(MetricsCli, BadInputIsExitCode2) {
@@ -126,6 +176,13 @@ TEST_F(MetricsCli, BadInputIsExitCode2) {
     EXPECT_EQ(runLodopt("metrics " + a + " " + a + " --weights 1,nan,1").exitCode, 2);
     EXPECT_EQ(runLodopt("metrics " + a + " " + a + " --gray hsv").exitCode, 2);
     EXPECT_EQ(runLodopt("metrics " + a).exitCode, 2);
+    for (const char* bad : {"--judge-nits 0", "--judge-nits -5", "--judge-pnorm 0.5", "--judge-display-scale 0",
+                            "--judge-display-scale 17"}) {
+        const CommandResult run = lodopt::cli_test::runShell(std::string(LODOPT_EXECUTABLE) + " metrics " + a + " " +
+                                                             a + " " + bad + " 2>&1");
+        EXPECT_EQ(run.exitCode, 2) << bad;
+        EXPECT_NE(run.output.find("judge"), std::string::npos) << bad << ": " << run.output;
+    }
 }
 
 }  // namespace

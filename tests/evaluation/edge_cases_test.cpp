@@ -13,6 +13,7 @@
 #include "evaluation/evaluation.hpp"
 #include "evaluation/time_cost.hpp"
 #include "optimizer/optimizer.hpp"
+#include "scenes/geometric_error.hpp"
 #include "scenes/mesh_builder.hpp"
 
 using namespace lodopt;
@@ -162,6 +163,7 @@ TEST(EdgeCases, SceneWithoutObjectsIsTheBackground) {
 TEST(EdgeCases, OneObjectWithOneLevelEveryAlgorithmReturnsIt) {
     scenes::Scene scene = emptyScene();
     scene.objects.push_back(objectAt("only", {0, 0, 0}, {levelOf({boxMesh({0, 0, 0}, {1, 1, 1}, 0)})}));
+    scenes::computeGeometricErrors(scene);  // what the engines' rules read
     Prepared prepared(scene, 48, 1000.0);
     ASSERT_EQ(prepared.problem.levelCounts, (std::vector<int>{1}));
     for (const std::string& name : optimizer::algorithmNames()) {

@@ -137,6 +137,9 @@ TEST(Algorithms, OneVariable) {
     problem.hints[0].projectedArea = 1.0;
     problem.hints[0].screenCoverage = 0.5;
     problem.hints[0].levelPixelError = {0, 0.5, 1, 2, 4};
+    problem.hints[0].levelDeviation = {0, 0.5, 1, 2, 4};
+    problem.hints[0].pixelsPerWorldUnit = 1.0;
+    problem.hints[0].boundingRadius = 1.0;
     for (const std::string& name : algorithmNames()) {
         const Result result = makeAlgorithm(name, 2)->run(problem, shortRun());
         EXPECT_LE(result.predictedMs, 3.5) << name;
@@ -160,6 +163,9 @@ TEST(Algorithms, OneLevelEverywhere) {
         hints.projectedArea = 2.0;
         hints.screenCoverage = 0.2;
         hints.levelScreenCoverage = {0.0};
+        hints.levelDeviation = {0.0};
+        hints.pixelsPerWorldUnit = 10.0;
+        hints.boundingRadius = 1.0;
     }
     for (const std::string& name : algorithmNames()) {
         const Result result = makeAlgorithm(name)->run(problem, shortRun());

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "metrics/incremental_evaluator.hpp"
+#include "metrics/judge.hpp"
 #include "metrics/metrics.hpp"
 #include "metrics/region_scorer.hpp"
 #include "optimizer/problem.hpp"
@@ -255,6 +256,11 @@ private:
     renderer::Frame mFrame;
     metrics::IncrementalEvaluator mMetrics;  // reused: setCandidate recomputes every pixel
 };
+
+// The judge's verdict on a rendered answer against the view's reference (metrics::judge):
+// what every command reports beside the fused fitness, and what no search reads.
+metrics::JudgeResult judgeFrame(const renderer::Frame& candidate, const renderer::Frame& reference,
+                                const metrics::JudgeParameters& parameters);
 
 // Plain-number hints for the distance, importance and screen-size baselines.
 std::vector<optimizer::VariableHints> computeHints(const ViewSetup& setup);

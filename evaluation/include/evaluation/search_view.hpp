@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "evaluation/evaluation.hpp"
 #include "evaluation/time_cost.hpp"
@@ -21,6 +22,9 @@ struct SearchViewSettings {
     int threads = 1;                              // fast path: evaluation threads, >= 1
     int states = LayerEvaluator::kDefaultStates;  // fast path: evaluation states
     double budgetMs = 0.0;                        // > 0
+    // optimizeView: the judge of the answer's image (ViewAnswer::judge); unset, not judged. The
+    // search never reads it.
+    std::optional<metrics::JudgeParameters> judge;
 };
 
 struct SearchView {
@@ -46,6 +50,7 @@ struct ViewAnswer {
     scenes::Combination levels;     // the answer, one level per scene object
     metrics::MetricResult metrics;  // of the answer's full render
     renderer::Frame image;          // the answer's full render
+    std::optional<metrics::JudgeResult> judge;  // `image` against the reference, with settings.judge
     double setupSeconds = 0.0;      // prepareSearchView's wall time
     double searchSeconds = 0.0;     // runSearch's wall time
 };

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -21,6 +22,8 @@ struct SweepViewOutcome {
     scenes::Combination levels;       // the answer, one level per scene object
     double fitness = 0.0;             // of the answer's full render, the user's metric weights
     double predictedMs = 0.0;         // the time model's prediction for the answer
+    // The judge's distance (butteraugli p-norm) of the answer's image, with settings.judge.
+    std::optional<double> judgeDistance;
     std::vector<double> screenSizes;  // per scene object: scenes::screenSize of its level 0
     int searchedObjects = 0;
     // The scene objects the search chose for (the view's variables), ascending; the others were

@@ -5,6 +5,7 @@
 #include "optimizer/algorithm.hpp"
 #include "optimizer/baselines.hpp"
 #include "optimizer/checked_evaluator.hpp"
+#include "optimizer/engine_rules.hpp"
 #include "optimizer/gapso.hpp"
 #include "optimizer/heuristics.hpp"
 #include "optimizer/mckp.hpp"

@@ -140,6 +140,16 @@ struct VariableHints {
     // One per level or empty: projected geometric error of the level at this view, in pixels,
     // >= 0 (0 for level 0).
     std::vector<double> levelPixelError;
+    // One per level or empty: the level's measured surface deviation from level 0 (two-sided,
+    // sampled; scenes::Level::geometricError), world units, >= 0 (0 for level 0). What the
+    // engines' automatic rules (engine_rules.hpp) project to pixels.
+    std::vector<double> levelDeviation;
+    // > 0, world units: the radius of the object's bounding sphere (Unreal's auto screen size).
+    double boundingRadius = kUnknown;
+    // > 0: pixels one world unit spans at the object's nearest point at this view (the viewport
+    // height over 2 d tan(fovY / 2), d the distance to the nearest point of its box, at least
+    // the near plane).
+    double pixelsPerWorldUnit = kUnknown;
 };
 
 // Everything an algorithm may know. The evaluator and cost are borrowed: they must outlive

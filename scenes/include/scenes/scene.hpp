@@ -140,6 +140,9 @@ struct Level {
     // meshoptimizer's relative simplification error of this level against level 0
     // (0 for authored levels and level 0).
     float simplificationError = 0.0f;
+    // Two-sided maximum surface deviation from level 0 in world units (the object's transform
+    // applied; geometric_error.hpp); 0 for level 0; unset until computeGeometricErrors.
+    std::optional<float> geometricError;
 };
 
 struct Object {
