@@ -36,10 +36,10 @@ function(lodopt_test module)
   endif()
   add_executable(${module}_tests ${sources})
   target_link_libraries(${module}_tests PRIVATE ${ARGN} GTest::gtest_main GTest::gmock)
-  target_compile_definitions(${module}_tests PRIVATE
-    LODOPT_SHARED_DATA_DIR="${LODOPT_SHARED_DATA_DIR}"
-    LODOPT_HARNESS_DIR="${PROJECT_SOURCE_DIR}/tests/harness"
-    LODOPT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    LODOPT_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  # The tree's, the build's and the programs' paths come from one generated header
+  # (tests/CMakeLists.txt), included by the tests that need one, not from compile definitions:
+  # a definition holding an absolute path would make every test object differ between two
+  # checkouts, and ccache would compile them all again in a fresh clone.
+  target_include_directories(${module}_tests PRIVATE ${LODOPT_TEST_PATHS_DIR})
   gtest_discover_tests(${module}_tests DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
 endfunction()

@@ -130,4 +130,28 @@ DifferenceMaps differenceMaps(const renderer::Frame& candidate, const renderer::
     return maps;
 }
 
+JudgeMap judgeMap(const renderer::Frame& candidate, const renderer::Frame& reference,
+                  const metrics::JudgeParameters& parameters, const std::string& what) {
+    if (candidate.width != reference.width || candidate.height != reference.height) {
+        throw UsageError(what + ": " + std::to_string(candidate.width) + "x" + std::to_string(candidate.height) +
+                         " differs from the reference's " + std::to_string(reference.width) + "x" +
+                         std::to_string(reference.height));
+    }
+    const int width = candidate.width, height = candidate.height;
+    metrics::JudgeParameters withMap = parameters;
+    withMap.keepDistanceMap = true;
+    const metrics::JudgeResult result =
+        metrics::judge(metrics::makeImageView(candidate.rgba.data(), width, height, 4),
+                       metrics::makeImageView(reference.rgba.data(), width, height, 4), withMap);
+    JudgeMap map;
+    map.distance = result.distance;
+    map.maxDistance = result.maxDistance;
+    map.high = std::max(1.0, std::ceil(result.maxDistance));
+    map.heat = blankFrame(width, height);
+    for (std::size_t i = 0; i < result.distanceMap.size(); ++i) {
+        colorAt(kInferno, double(result.distanceMap[i]) / map.high, &map.heat.rgba[i * 4]);
+    }
+    return map;
+}
+
 }  // namespace lodopt::cli

@@ -14,6 +14,7 @@
 
 #include <string>
 
+#include "metrics/judge.hpp"
 #include "renderer/renderer.hpp"
 
 namespace lodopt::cli {
@@ -34,6 +35,18 @@ struct DifferenceMaps {
 // `candidate` and `reference` must have the same size (else UsageError naming `what`).
 DifferenceMaps differenceMaps(const renderer::Frame& candidate, const renderer::Frame& reference,
                               const std::string& what);
+
+// The judge's distance map of `candidate` against `reference` (metrics::judge), colour-coded
+// with inferno from 0 to `high` (the map's largest value rounded up, at least 1: about one
+// just-noticeable difference). Same sizes as differenceMaps requires.
+struct JudgeMap {
+    renderer::Frame heat;
+    double distance = 0.0;     // the p-norm
+    double maxDistance = 0.0;  // the map's largest value
+    double high = 1.0;         // distance at the bright end of the scale
+};
+JudgeMap judgeMap(const renderer::Frame& candidate, const renderer::Frame& reference,
+                  const metrics::JudgeParameters& parameters, const std::string& what);
 
 // The colour scales as CSS linear-gradient stops, for the page's legends.
 std::string magmaCss();

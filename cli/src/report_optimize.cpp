@@ -1,6 +1,6 @@
 // The report's optimize section: facts, the images side by side (reference, optimized, a
-// baseline algorithm's answer, SSIM map, difference heat map), the chosen levels per object
-// and the fitness curve.
+// baseline algorithm's answer, SSIM map, difference heat map, the judge's maps of the answer
+// and of the baseline), the chosen levels per object and the fitness curve.
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -12,6 +12,7 @@
 #include "report_data.hpp"
 #include "report_images.hpp"
 #include "report_sections.hpp"
+#include "evaluation/evaluation.hpp"
 #include "scenes/builtin.hpp"
 
 namespace lodopt::cli {
@@ -38,7 +39,20 @@ struct Baseline {
     double fitness = NAN;
     double predictedMs = NAN;
     std::int64_t evaluations = 0;
+    double judge = NAN;  // butteraugli p-norm of `image` against the reference
 };
+
+// The judge's viewing conditions result.json records (defaults where it has none).
+metrics::JudgeParameters judgeParametersOf(const nlohmann::json& result) {
+    metrics::JudgeParameters parameters;
+    if (result.contains("judge") && result["judge"].is_object()) {
+        const nlohmann::json& judge = result["judge"];
+        parameters.pnorm = jsonNumber(judge, "pnorm", parameters.pnorm);
+        parameters.intensityTargetNits = jsonNumber(judge, "intensity_target_nits", parameters.intensityTargetNits);
+        parameters.displayScale = int(jsonNumber(judge, "display_scale", parameters.displayScale));
+    }
+    return parameters;
+}
 
 // The options `lodopt optimize` ran with, as far as `folder`/result.json tells them. Throws
 // UsageError when the profile it names cannot be found (the baseline would otherwise run under
@@ -90,7 +104,7 @@ Baseline runBaseline(const nlohmann::json& result, const fs::path& folder, const
         checkAlgorithmName(report.baseline);
         const OptimizeOptions options = optionsOf(result, folder, report);
         if (!(options.budgetMs > 0.0)) throw UsageError("result.json has no budget_ms");
-        PreparedScene prepared = prepareScene(options);
+        PreparedScene prepared = prepareScene(options, needsGeometricErrors(report.baseline));
         for (const scenes::Object& object : prepared.scene.objects) {
             facts.names.push_back(object.name);
             facts.levelCounts.push_back(int(object.levels.size()));
@@ -104,6 +118,8 @@ Baseline runBaseline(const nlohmann::json& result, const fs::path& folder, const
         baseline.predictedMs = run.predictedMs;
         baseline.evaluations = run.evaluations;
         baseline.levels.assign(levels.begin(), levels.end());
+        baseline.judge =
+            evaluation::judgeFrame(baseline.image, context.setup->reference(), judgeParametersOf(result)).distance;
     } catch (const std::exception& error) {
         baseline.image = {};
         baseline.note = "No baseline: " + std::string(error.what());
@@ -140,8 +156,13 @@ void addFacts(ReportContext& context, const nlohmann::json& result, const Baseli
     auto fidelity = [&](const char* key) {
         return result.contains(key) && result[key].is_object() ? jsonNumber(result[key], "fidelity", NAN) : NAN;
     };
+    const bool judged = result.contains("judge") && result["judge"].is_object();
     std::vector<std::vector<std::string>> rows = {
         {"fitness (full render)", fixed(jsonNumber(result, "fitness", NAN), 4)},
+        {"judge: butteraugli p-norm / max (lower is better; no search reads it)",
+         judged ? fixed(jsonNumber(result["judge"], "butteraugli", NAN), 3) + " / " +
+                      fixed(jsonNumber(result["judge"], "butteraugli_max", NAN), 3)
+                : std::string("– (optimize --no-judge)")},
         {"SSIM / boundary / information fidelity", fixed(fidelity("ssim"), 4) + " / " +
                                                        fixed(fidelity("boundary_entropy"), 4) + " / " +
                                                        fixed(fidelity("information_entropy"), 4)},
@@ -180,8 +201,9 @@ void addFacts(ReportContext& context, const nlohmann::json& result, const Baseli
                             jsonText(groups, "kept_scores", "–")});
     }
     if (baseline.image.width > 0) {
-        rows.push_back({"baseline " + baselineName + ": fitness, predicted ms",
-                        fixed(baseline.fitness, 4) + ", " + fixed(baseline.predictedMs, 2)});
+        rows.push_back({"baseline " + baselineName + ": fitness, judge, predicted ms",
+                        fixed(baseline.fitness, 4) + ", " + fixed(baseline.judge, 3) + ", " +
+                            fixed(baseline.predictedMs, 2)});
     }
     context.html.table({"", "value"}, rows);
 }
@@ -240,6 +262,27 @@ void addImages(ReportContext& context, const fs::path& folder, const nlohmann::j
     differenceImage.legendHigh = std::to_string(maps.differenceHigh);
     context.html.images(pictures);
     context.html.images({ssimImage, differenceImage});
+
+    // Where the judge sees the answer, and the baseline, differ from the reference.
+    const metrics::JudgeParameters judgeParameters = judgeParametersOf(result);
+    std::vector<ReportImage> judged;
+    auto addJudgeMap = [&](const renderer::Frame& image, const std::string& name, const std::string& label) {
+        const JudgeMap map = judgeMap(image, reference, judgeParameters, label);
+        const std::string path = (dir / (context.prefix + name)).string();
+        renderer::writeColorImage(path, map.heat);
+        ReportImage picture = makeImage(path,
+                                        "Judge's map, " + label + " vs reference: butteraugli " +
+                                            fixed(judgeParameters.pnorm, 0) + "-norm " + fixed(map.distance, 3) +
+                                            ", max " + fixed(map.maxDistance, 3) + " (about 1 = just noticeable)",
+                                        "", display);
+        picture.legendGradient = infernoCss();
+        picture.legendLow = "0";
+        picture.legendHigh = fixed(map.high, 0);
+        judged.push_back(picture);
+    };
+    addJudgeMap(optimized, "judge_map.png", "optimized");
+    if (baseline.image.width > 0) addJudgeMap(baseline.image, "judge_map_baseline.png", "baseline " + baselineName);
+    context.html.images(judged);
 }
 
 // The result's object names and chosen levels (-1 where a level is not an integer): from

@@ -31,7 +31,7 @@ struct ReportOptions {
     // Algorithm whose answer is shown beside the optimized image ("none" = no baseline). It is
     // re-run on the scene named in result.json; needs the scene (built-in, or the glTF path
     // still valid) and a time model (--profile, else the one result.json names, else shipped).
-    std::string baseline = "screensize";
+    std::string baseline = "pixelerror";  // the engines' automatic rule (Godot's, 1 px at the bias meeting the budget)
     std::string profile;  // device profile for the baseline's time model
 };
 

@@ -4,6 +4,7 @@
 
 #include <jxl/butteraugli.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -16,6 +17,7 @@ namespace lodopt::metrics {
 namespace {
 
 constexpr int kMaxDisplayScale = 16;
+constexpr int kSmallestSide = 8;  // pixels: what butteraugli measures at all
 
 template <typename T>
 [[noreturn]] void badJudgeParameter(const char* name, T value, const char* requirement) {
@@ -66,7 +68,10 @@ void validateJudgeParameters(const JudgeParameters& p) {
 JudgeResult judge(const ImageView& candidate, const ImageView& reference, const JudgeParameters& parameters) {
     detail::validatePair(candidate, reference);
     validateJudgeParameters(parameters);
-    const int scale = parameters.displayScale;
+    // libjxl's butteraugli answers 0 for any image narrower or lower than 8 pixels, however
+    // different: such an image is shown larger, by the smallest factor that reaches 8.
+    const int smallest = std::min(candidate.width, candidate.height);
+    const int scale = std::max(parameters.displayScale, (kSmallestSide + smallest - 1) / smallest);
     const std::uint32_t width = std::uint32_t(candidate.width) * scale;
     const std::uint32_t height = std::uint32_t(candidate.height) * scale;
     const std::vector<std::uint8_t> referenceRgb = displayedRgb(reference, scale);

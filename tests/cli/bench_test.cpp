@@ -13,6 +13,7 @@
 
 #include "report_data.hpp"
 #include "run_lodopt.hpp"
+#include "lodopt_test_paths.hpp"
 
 namespace {
 

@@ -19,6 +19,7 @@
 #include <thread>
 #include <utility>
 #include <vector>
+#include "lodopt_test_paths.hpp"
 
 namespace lodopt::cli_test {
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "run_lodopt.hpp"
+#include "lodopt_test_paths.hpp"
 
 namespace {
 

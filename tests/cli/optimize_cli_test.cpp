@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "run_lodopt.hpp"
+#include "lodopt_test_paths.hpp"
 
 namespace {
 

@@ -9,6 +9,7 @@
 
 #include "child_process.hpp"
 #include "run_lodopt.hpp"
+#include "lodopt_test_paths.hpp"
 
 namespace lodopt::cli_test {
 namespace {

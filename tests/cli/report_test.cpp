@@ -109,11 +109,14 @@ TEST_F(ReportCli, OptimizePageHasImagesMapsLevelsAndCurve) {
     EXPECT_NE(html.find("Fitness curve"), std::string::npos);
     EXPECT_NE(html.find("SSIM map"), std::string::npos);
     EXPECT_NE(html.find("Difference heat map"), std::string::npos);
-    EXPECT_NE(html.find("Baseline (screensize"), std::string::npos);
+    EXPECT_NE(html.find("Baseline (pixelerror"), std::string::npos);  // the engines' rule by default
+    EXPECT_NE(html.find("map, optimized vs reference: butteraugli 3-norm"), std::string::npos);
+    EXPECT_NE(html.find("map, baseline pixelerror vs reference"), std::string::npos);
     EXPECT_NE(html.find("window groups"), std::string::npos);  // the fast path's cache
-    // Reference, optimized, baseline, SSIM map, difference; + the levels and curve plots.
+    // Reference, optimized, baseline, SSIM map, difference, the judge's two maps; + the levels
+    // and curve plots.
     const std::size_t images = countOf(html, kEmbeddedPng);
-    EXPECT_EQ(images, sGnuplot ? 7u : 5u);
+    EXPECT_EQ(images, sGnuplot ? 9u : 7u);
     EXPECT_EQ(summary["images_embedded"].get<std::size_t>(), images);
     EXPECT_EQ(html.find("src=\"report_files"), std::string::npos) << "images must be embedded, not linked";
 
@@ -124,6 +127,8 @@ TEST_F(ReportCli, OptimizePageHasImagesMapsLevelsAndCurve) {
     EXPECT_TRUE(isPng(files / "ssim_map.png"));
     EXPECT_TRUE(isPng(files / "difference.png"));
     EXPECT_TRUE(isPng(files / "baseline.png"));
+    EXPECT_TRUE(isPng(files / "judge_map.png"));
+    EXPECT_TRUE(isPng(files / "judge_map_baseline.png"));
     if (std::getenv("LODOPT_GNUPLOT") && !sGnuplot) GTEST_SKIP() << "LODOPT_GNUPLOT turns plotting off";
     ASSERT_TRUE(sGnuplot) << "gnuplot (gnuplot-nox: the quick start installs it) is not on the PATH";
     EXPECT_TRUE(isPng(files / "levels.png"));
@@ -200,7 +205,7 @@ TEST_F(ReportCli, WithoutGnuplotThePageIsStillWritten) {
     EXPECT_FALSE(summary["plots_available"].get<bool>());
     const std::string html = readText(out);
     EXPECT_NE(html.find("No plot: plotting disabled"), std::string::npos);
-    EXPECT_EQ(countOf(html, kEmbeddedPng), 5u);  // the renders and maps need no gnuplot
+    EXPECT_EQ(countOf(html, kEmbeddedPng), 7u);  // the renders and maps need no gnuplot
     EXPECT_TRUE(fs::exists(sDir / "no_gnuplot_files" / "curve.gp"));
     EXPECT_FALSE(fs::exists(sDir / "no_gnuplot_files" / "curve.png"));
     // A gnuplot path that does not exist is not fatal either.

@@ -26,6 +26,7 @@
 #include "interrupt.hpp"
 #include "scenes/gltf_io.hpp"
 #include "scenes/mesh_builder.hpp"
+#include "lodopt_test_paths.hpp"
 
 namespace fs = std::filesystem;
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <string>
+#include "lodopt_test_paths.hpp"
 
 namespace lodopt::cli_test {
 

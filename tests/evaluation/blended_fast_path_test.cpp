@@ -15,6 +15,7 @@
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
 #include "walk_helpers.hpp"
+#include "lodopt_test_paths.hpp"
 
 using namespace lodopt;
 using namespace lodopt::test_walks;

@@ -26,6 +26,7 @@
 #include "renderer/renderer.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
+#include "lodopt_test_paths.hpp"
 
 using namespace lodopt;
 namespace fs = std::filesystem;

@@ -14,6 +14,7 @@
 
 #include "../cli/child_process.hpp"
 #include "../cli/run_lodopt.hpp"
+#include "lodopt_test_paths.hpp"
 
 namespace lodopt::harness_test {
 

@@ -15,6 +15,7 @@
 
 #include "harness_support.hpp"
 #include "renderer/renderer.hpp"
+#include "lodopt_test_paths.hpp"
 
 namespace lodopt::harness_test {
 namespace {

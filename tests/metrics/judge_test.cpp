@@ -86,6 +86,17 @@ TEST(Judge, AlphaIsIgnoredAndGrayIsJudgedAsGray) {
     EXPECT_GT(judge(grayOther.view(), gray.view()).distance, 0.0);
 }
 
+// libjxl answers 0 for any image with a side under 8 pixels; the judge enlarges such images.
+TEST(Judge, ImagesUnderEightPixelsAreStillJudged) {
+    for (auto [width, height] : {std::pair{1, 1}, std::pair{3, 2}, std::pair{7, 16}, std::pair{1, 300}}) {
+        TestImage a(width, height, 3, 40), b(width, height, 3, 40);
+        b.at(0, 0)[0] = 220;
+        const JudgeResult different = judge(b.view(), a.view());
+        EXPECT_GT(different.distance, 0.5) << width << "x" << height;
+        EXPECT_EQ(judge(a.view(), a.view()).distance, 0.0) << width << "x" << height;
+    }
+}
+
 TEST(Judge, ViewingConditionsChangeTheDistance) {
     const TestImage reference = generateScene(64, 64, 3, 2, 0);
     const TestImage candidate = withNoise(reference, 6, 3);

@@ -11,6 +11,7 @@
 
 #include "../cli/run_lodopt.hpp"
 #include "scheduler/coefficients.hpp"
+#include "lodopt_test_paths.hpp"
 
 namespace lodopt {
 namespace {
@@ -108,6 +109,11 @@ TEST_F(InstalledPackage, ConsumerBuiltAgainstItSchedulesLikeTheTree) {
     ASSERT_EQ(installed.exitCode, 0) << installed.output;
     ASSERT_EQ(inTree.exitCode, 0) << inTree.output;
     EXPECT_EQ(installed.output, inTree.output);
+
+    // The program that links every exported library runs: it draws, judges and scores the harbor.
+    const cli_test::CommandResult every = runShell(quoted(build / "every_library") + " 2>&1");
+    ASSERT_EQ(every.exitCode, 0) << every.output;
+    EXPECT_NE(every.output.find("objects 3 judge "), std::string::npos) << every.output;
 
     // Forty frames, one line each; the feedback moved off 1 (drawing takes 10% longer).
     std::istringstream lines(installed.output);

@@ -8,6 +8,7 @@
 #include "renderer/renderer.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
+#include "lodopt_test_paths.hpp"
 
 using namespace lodopt;
 

@@ -12,6 +12,7 @@
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
 #include "scenes/mesh_builder.hpp"
+#include "lodopt_test_paths.hpp"
 
 using namespace lodopt;
 

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
+#include "lodopt_test_paths.hpp"
 
 namespace lodopt::scenes::testing {
 

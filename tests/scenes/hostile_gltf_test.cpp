@@ -15,6 +15,7 @@
 #include "gltf_test_files.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
+#include "lodopt_test_paths.hpp"
 
 namespace lodopt::scenes {
 namespace {

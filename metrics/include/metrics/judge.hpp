@@ -33,7 +33,8 @@ struct JudgeParameters {
     // >= 1: the p of the p-norm pooling the distance map. 3, butteraugli_main's --pnorm 3.
     double pnorm = 3.0;
     // 1..16: display pixels per image pixel on each axis; the image is enlarged by pixel
-    // replication before judging. 1: one image pixel is one display pixel.
+    // replication before judging. 1: one image pixel is one display pixel. An image with a side
+    // under 8 pixels is enlarged at least until that side reaches 8 (butteraugli gives 0 below).
     int displayScale = 1;
     // Keep the distance map in JudgeResult::distanceMap (image pixels, rows top to bottom).
     bool keepDistanceMap = false;
