@@ -51,11 +51,23 @@ fi
 # another folder (CI) hits what an earlier build here compiled; -g1 builds ignore the folder too.
 export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
 
+# Each stage's wall time, printed at the end of a test run (where CI's time goes).
+stages=()
+stage_start=$(date +%s)
+stage_done() {
+  local now
+  now=$(date +%s)
+  stages+=("$1 $((now - stage_start)) s")
+  stage_start=$now
+}
+stage_done "install"
+
 build=${LODOPT_BUILD_DIR:-build}
 # LODOPT_PAGMO=ON, LODOPT_MPI=ON: the pagmo:* algorithms (libpagmo-dev) and the sweep under mpirun
 # (libopenmpi-dev), both installed above, must be built.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DLODOPT_PAGMO=ON -DLODOPT_MPI=ON >/dev/null
 cmake --build "$build" -j"$(nproc)"
+stage_done "build"
 
 if [ "$mode" = run ]; then
   out=${LODOPT_OUT:-out/quickstart}
@@ -65,10 +77,14 @@ if [ "$mode" = run ]; then
   echo "quickstart: result.json, curve.csv, optimized.png and reference.png are in $out/"
 else
   ctest --test-dir "$build" --output-on-failure -j2 --timeout 900
+  stage_done "ctest"
   # Then the same suite under ASan + UBSan (build-asan) and bounded fuzzing of every fuzz
   # target (docs/robustness.md). LODOPT_SKIP_SANITIZERS=1 skips both for a quick local run.
   if [ "${LODOPT_SKIP_SANITIZERS:-0}" != 1 ]; then
     scripts/sanitize.sh
+    stage_done "sanitizers (build and suite)"
     scripts/fuzz.sh "${LODOPT_FUZZ_SECONDS:-60}"
+    stage_done "fuzzing (build and runs)"
   fi
+  echo "quickstart: stage times: $(IFS=';'; echo "${stages[*]}" | sed 's/;/, /g')"
 fi

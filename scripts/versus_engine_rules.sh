@@ -6,8 +6,10 @@
 # prediction (0) and its all-finest one (1). Rules: screensize, distance, pixelerror (Godot's
 # projected-error rule), unreal-auto (Unreal's auto screen size), each at the bias that meets the
 # budget. Prints one CSV row per view, fraction and answer: the fused fitness, the predicted time
-# and the judge's 3-norm (lower is better), then a summary per scene: views where the default looks
-# at least as good as the best rule to the judge.
+# and the judge's 3-norm (lower is better), then a summary per scene and over all: views where the
+# default looks at least as good as the best rule to the judge (wins, ties within 0.001, losses),
+# the mean margin (best rule's judge minus the default's; positive favours the default) with a
+# seeded 95 % bootstrap interval, and how many answers were over their budget (0 by construction).
 # Environment: LODOPT (default build/cli/lodopt), LODOPT_OUT (default out/versus_engine_rules),
 # LODOPT_SCENES (default "harbor forest city"; a glTF path works too), LODOPT_ARGS (extra options).
 set -euo pipefail
@@ -53,17 +55,35 @@ PY
 done | tee "$out/rows.csv"
 
 python3 - "$out/rows.csv" <<'PY'
-import collections, sys
+import collections, random, statistics, sys
 rows = [line.strip().split(",") for line in open(sys.argv[1]) if line.strip() and not line.startswith("scene,")]
 cases = collections.defaultdict(dict)
 for scene, view, fraction, budget, answer, fitness, ms, judge in rows:
-    cases[(scene, view, fraction)][answer] = (float(fitness), float(judge))
+    cases[(scene, view, fraction)][answer] = (float(fitness), float(judge), float(ms) <= float(budget) * (1 + 1e-9))
 by_scene = collections.defaultdict(list)
+over_budget = 0
 for (scene, view, fraction), answers in cases.items():
-    best_rule = min(judge for name, (fitness, judge) in answers.items() if name != "default")
+    over_budget += sum(1 for fitness, judge, within in answers.values() if not within)
+    best_rule = min(judge for name, (fitness, judge, within) in answers.items() if name != "default")
     by_scene[scene].append(best_rule - answers["default"][1])
-print("scene,cases,default_at_least_as_good,mean_judge_margin")
+by_scene["all"] = [m for scene in list(by_scene) for m in by_scene[scene]]
+
+
+def interval(margins, draws=2000):
+    """95 % bootstrap interval of the mean (seeded: the same figures every run)."""
+    generator = random.Random(1)
+    means = sorted(statistics.fmean(generator.choices(margins, k=len(margins))) for _ in range(draws))
+    return means[int(0.025 * draws)], means[int(0.975 * draws) - 1]
+
+
+# A tie: the judge distances differ by at most 0.1 % of the default's.
+print("scene,cases,default_at_least_as_good,wins,ties,losses,mean_judge_margin,margin_95_low,margin_95_high")
 for scene, margins in by_scene.items():
-    wins = sum(1 for m in margins if m >= 0)
-    print(f"{scene},{len(margins)},{wins},{sum(margins) / len(margins):+.4f}")
+    ties = sum(1 for m in margins if abs(m) <= 1e-3 * 1.0)
+    wins = sum(1 for m in margins if m > 1e-3)
+    losses = sum(1 for m in margins if m < -1e-3)
+    low, high = interval(margins)
+    print(f"{scene},{len(margins)},{wins + ties},{wins},{ties},{losses},{statistics.fmean(margins):+.4f},"
+          f"{low:+.4f},{high:+.4f}")
+print(f"answers over their budget: {over_budget}")
 PY

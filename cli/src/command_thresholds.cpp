@@ -132,7 +132,7 @@ nlohmann::json comparisonJson(const evaluation::RuleComparison& comparison) {
 void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
     const SweepTable table = readSweepTable(o.from);
     OptimizeOptions sweep = sweepOptions(table, o.from);
-    PreparedScene prepared = prepareScene(sweep);
+    PreparedScene prepared = prepareScene(sweep, true);  // the engines' geometric-error rules read it
     scenes::Scene& scene = prepared.scene;
     if (scene.objects.size() != table.objects.size()) {
         throw UsageError(o.from + ": the sweep has " + std::to_string(table.objects.size()) + " objects, scene '" +
@@ -173,7 +173,9 @@ void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
     // The tuned rule and the engines' defaults, each with its bias, compared on held-out views.
     std::vector<evaluation::SwitchRuleThresholds> rules{{"tuned", {}}};
     for (const evaluation::ObjectThresholds& r : results) rules.front().thresholds.push_back(r.fittedScreenSize);
-    for (evaluation::SwitchRuleThresholds& rule : evaluation::defaultSwitchRules(scene)) rules.push_back(std::move(rule));
+    for (evaluation::SwitchRuleThresholds& rule : evaluation::defaultSwitchRules(scene, prepared.settings.height)) {
+        rules.push_back(std::move(rule));
+    }
     evaluation::RuleComparisonSettings compare;
     compare.budgetMs = sweep.budgetMs;
     compare.holdoutEvery = o.holdoutEvery;

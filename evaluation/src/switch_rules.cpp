@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "metrics/incremental_evaluator.hpp"
+#include "optimizer/engine_rules.hpp"
 #include "scenes/engine_lod.hpp"
 #include "scenes/viewpoints.hpp"
 #include "scheduler/screen_thresholds.hpp"
@@ -72,9 +73,31 @@ double mean(const std::vector<double>& values) {
     return values.empty() ? NAN : sum / double(values.size());
 }
 
+// Thresholds from each level's own screen size (levelSize(object, k) for k >= 1, the size at or
+// below which the engine allows level k): t_k = the largest size of the levels coarser than k,
+// so an object takes the coarsest level its size allows. Infinite sizes (a level identical to
+// level 0) become a size no object reaches from below. Null when a level has no geometric error.
+template <typename LevelSize>
+std::optional<ObjectThresholdList> geometricThresholds(const scenes::Scene& scene, LevelSize levelSize) {
+    constexpr double kAlways = 1e12;
+    ObjectThresholdList list;
+    for (const scenes::Object& object : scene.objects) {
+        const int levels = int(object.levels.size());
+        std::vector<double> sizes(std::size_t(std::max(levels - 1, 0)), 0.0);
+        double largest = 0.0;
+        for (int k = levels - 1; k >= 1; --k) {
+            if (!object.levels[std::size_t(k)].geometricError) return std::nullopt;
+            largest = std::max(largest, std::min(levelSize(object, k), kAlways));
+            sizes[std::size_t(k - 1)] = largest;
+        }
+        list.push_back(std::move(sizes));
+    }
+    return list;
+}
+
 }  // namespace
 
-std::vector<SwitchRuleThresholds> defaultSwitchRules(const scenes::Scene& scene) {
+std::vector<SwitchRuleThresholds> defaultSwitchRules(const scenes::Scene& scene, int viewportHeight) {
     std::vector<SwitchRuleThresholds> rules;
     if (std::optional<ObjectThresholdList> file = fileThresholds(scene)) rules.push_back({"file", std::move(*file)});
     rules.push_back({"msft_default", fromUnityHeights(scene, {0.5, 0.2, 0.01})});
@@ -84,6 +107,23 @@ std::vector<SwitchRuleThresholds> defaultSwitchRules(const scenes::Scene& scene)
         unreal.push_back(continued({0.75, 0.75 * 0.75}, int(object.levels.size()) - 1));
     }
     rules.push_back({"unreal_075", std::move(unreal)});
+    if (viewportHeight > 0) {
+        auto radius = [](const scenes::Object& object) {
+            return std::max(double(scenes::worldBounds(object, 0).sphereRadius), 1e-9);
+        };
+        if (auto pixel = geometricThresholds(scene, [&](const scenes::Object& object, int k) {
+                return optimizer::pixelErrorScreenSize(*object.levels[std::size_t(k)].geometricError, radius(object),
+                                                       1.0, double(viewportHeight));
+            })) {
+            rules.push_back({"pixelerror", std::move(*pixel)});
+        }
+        if (auto unrealAuto = geometricThresholds(scene, [&](const scenes::Object& object, int k) {
+                return optimizer::unrealAutoScreenSize(*object.levels[std::size_t(k)].geometricError, radius(object),
+                                                       1.0);
+            })) {
+            rules.push_back({"unreal_auto", std::move(*unrealAuto)});
+        }
+    }
     return rules;
 }
 

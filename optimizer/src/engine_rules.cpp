@@ -84,6 +84,16 @@ Combination engineRuleLevels(const std::vector<std::vector<double>>& thresholds,
     return combination;
 }
 
+double unrealAutoScreenSize(double deviation, double radius, double pixelError) {
+    const double viewDistance = deviation * kUnrealHalfWidthPixels / pixelError;  // UE CalculateViewDistance
+    return 2.0 * kUnrealScreenMultiple * radius / (viewDistance + radius);       // UE ComputeBoundsScreenSize
+}
+
+double pixelErrorScreenSize(double deviation, double radius, double pixelError, double viewportHeight) {
+    if (!(deviation > 0.0)) return kNever;
+    return 2.0 * radius * pixelError / (deviation * viewportHeight);
+}
+
 EngineRuleHeuristic::EngineRuleHeuristic(EngineRule rule, EngineRuleParameters parameters)
     : mRule(rule), mParameters(parameters) {
     if (!std::isfinite(mParameters.pixelError) || mParameters.pixelError <= 0.0) {

@@ -57,7 +57,8 @@ TEST(ThresholdsCli, FromASweepWritesEngineFilesThatLodoptReadsBack) {
         const double share = row["over_budget_share"].get<double>();
         EXPECT_TRUE(share >= 0.0 && share <= 1.0) << share;
     }
-    EXPECT_EQ(rules, (std::vector<std::string>{"tuned", "msft_default", "unitygltf_halving", "unreal_075"}));
+    EXPECT_EQ(rules, (std::vector<std::string>{"tuned", "msft_default", "unitygltf_halving", "unreal_075",
+                                               "pixelerror", "unreal_auto"}));
     const double bias = summary["lod_bias"]["lod_bias"].get<double>();
     EXPECT_EQ(summary["held_out"][0]["lod_bias"].get<double>(), bias);
     if (summary["lod_bias"]["meets_budget"].get<bool>()) {
@@ -137,7 +138,7 @@ TEST(ThresholdsCli, FromASweepWritesEngineFilesThatLodoptReadsBack) {
         runLodopt("thresholds --from " + (folder / "sweep_glb") + " --out " + (folder / "out_glb") + " --json");
     ASSERT_EQ(again.exitCode, 0) << again.output;
     const nlohmann::json rows = nlohmann::json::parse(again.output)["held_out"];
-    ASSERT_EQ(rows.size(), 5u);
+    ASSERT_EQ(rows.size(), 7u);  // tuned, file, the three lists, the two geometric-error rules
     EXPECT_EQ(rows[1]["rule"], "file");
 }
 

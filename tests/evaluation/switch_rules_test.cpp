@@ -60,6 +60,41 @@ TEST(SwitchRules, DefaultRulesInScreenSizeHandWorked) {
     EXPECT_NE(defaultSwitchRules(scene)[0].name, "file");
 }
 
+// The engines' geometric-error rules, from errors set by hand on the chain (radius sqrt(6)/2):
+// pixelerror's level k opens at 2 R / (D_k H) on a 512-pixel viewport; Unreal's at
+// 2 (0.5 1920/1080) R / (960 D_k + R); each threshold the largest size of the coarser levels.
+TEST(SwitchRules, EngineGeometricRulesFromEachLevelsDeviation) {
+    scenes::Scene scene = shrinkingBoxes();
+    EXPECT_EQ(defaultSwitchRules(scene, 512).size(), 3u);  // no geometric errors: left out
+    const double deviation[] = {0.0, 0.01, 0.04, 0.02};    // level 3 less off than level 2
+    for (int k = 0; k < 4; ++k) scene.objects[0].levels[std::size_t(k)].geometricError = float(deviation[k]);
+    scene.objects[1].levels[0].geometricError = 0.0f;
+    EXPECT_EQ(defaultSwitchRules(scene).size(), 3u);  // no viewport height: left out
+    const std::vector<SwitchRuleThresholds> rules = defaultSwitchRules(scene, 512);
+    ASSERT_EQ(rules.size(), 5u);
+    ASSERT_EQ(rules[3].name, "pixelerror");
+    ASSERT_EQ(rules[4].name, "unreal_auto");
+    const double radius = double(scenes::worldBounds(scene.objects[0], 0).sphereRadius);
+    auto pixel = [&](int k) { return 2.0 * radius / (double(float(deviation[k])) * 512.0); };
+    ASSERT_EQ(rules[3].thresholds[0].size(), 3u);
+    EXPECT_NEAR(rules[3].thresholds[0][2], pixel(3), 1e-9);                  // t_2: level 3's own
+    EXPECT_NEAR(rules[3].thresholds[0][1], pixel(3), 1e-9);                  // level 3 opens before level 2
+    EXPECT_NEAR(rules[3].thresholds[0][0], std::max(pixel(2), pixel(1)), 1e-9);
+    EXPECT_NEAR(rules[3].thresholds[0][0], pixel(1), 1e-9);
+    auto unreal = [&](int k) {
+        return 2.0 * (0.5 * 1920.0 / 1080.0) * radius / (double(float(deviation[k])) * 960.0 + radius);
+    };
+    EXPECT_NEAR(rules[4].thresholds[0][0], unreal(1), 1e-9);
+    EXPECT_NEAR(rules[4].thresholds[0][2], unreal(3), 1e-9);
+    EXPECT_TRUE(rules[3].thresholds[1].empty());
+    // Where level 1's deviation spans 0.6 px (level 2's 2.4, level 3's 1.2) the rule draws level 1;
+    // where it spans 0.45 px, level 3 (0.9 px) is allowed though level 2 (1.8 px) is not.
+    const ViewChoices view{{0, 0}, {0.6 * pixel(1), 0.5}, {0}};
+    EXPECT_EQ(ruleCombination(scene, rules[3].thresholds, view, 1.0)[0], 1);
+    const ViewChoices far{{0, 0}, {0.9 * pixel(3), 0.5}, {0}};
+    EXPECT_EQ(ruleCombination(scene, rules[3].thresholds, far, 1.0)[0], 3);
+}
+
 TEST(SwitchRules, RuleCombinationBiasesSearchedObjectsAndDrawsTheOthersCoarsest) {
     const scenes::Scene scene = shrinkingBoxes();
     const ObjectThresholdList thresholds = {{0.4, 0.2, 0.1}, {}};

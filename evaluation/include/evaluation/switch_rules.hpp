@@ -54,8 +54,17 @@ struct SwitchRuleThresholds {
 //                      MSFT_screencoverage (Unity relative heights)
 //   unitygltf_halving  UnityGLTF's fallback, Unity relative heights 0.5, 0.25, 0.125, ...
 //   unreal_075         Unreal-style screen sizes 0.75, 0.75², ...
-// Lists shorter than an object's switches continue with their last ratio.
-std::vector<SwitchRuleThresholds> defaultSwitchRules(const scenes::Scene& scene);
+//   pixelerror         the engines' automatic geometric-error rule (Godot 4's mesh LOD threshold,
+//                      1 px; optimizer/engine_rules.hpp): level k from the screen size at which its
+//                      measured deviation spans 1 pixel on a viewport `viewportHeight` pixels high
+//   unreal_auto        Unreal's Auto Compute LOD Screen Size from each level's deviation (1 px on
+//                      1920x1080, 90 degrees)
+// The last two need every level's Level::geometricError (scenes::computeGeometricErrors) and are
+// left out without them (or with viewportHeight 0). A level a coarser one may replace at a larger
+// size is drawn coarser there too, as the engines' loops do: each threshold is the largest of the
+// coarser levels' own sizes. Lists shorter than an object's switches continue with their last
+// ratio.
+std::vector<SwitchRuleThresholds> defaultSwitchRules(const scenes::Scene& scene, int viewportHeight = 0);
 
 // The combination the rule draws at `view` under `bias` (see above).
 scenes::Combination ruleCombination(const scenes::Scene& scene, const ObjectThresholdList& thresholds,

@@ -47,6 +47,18 @@ struct EngineRuleParameters {
 // pixelsPerWorldUnit; unreal-auto: levelDeviation, boundingRadius, screenCoverage).
 std::vector<std::vector<double>> engineRuleThresholds(const Problem& problem, EngineRule rule);
 
+// Unreal's automatic screen size of a level: S = 2 (0.5 x 1920 / 1080) R / (deviation x 960 /
+// pixelError + R), the size below which the engine draws that level or a coarser one.
+//   deviation: >= 0, world units; radius: > 0, world units; pixelError: > 0, pixels.
+double unrealAutoScreenSize(double deviation, double radius, double pixelError);
+
+// The screen size (bounding-sphere diameter over the view height, seen from the sphere's centre)
+// at or below which a level's deviation spans at most `pixelError` pixels on a viewport
+// `viewportHeight` pixels high: 2 R pixelError / (deviation x viewportHeight); +infinity for a
+// deviation of 0. The pixelerror rule as a screen-size threshold (the view-independent form
+// engines export; the optimizer's rule measures at the object's nearest point instead).
+double pixelErrorScreenSize(double deviation, double radius, double pixelError, double viewportHeight);
+
 // The combination the rule gives at bias `pixelError` (> 0) from its thresholds.
 Combination engineRuleLevels(const std::vector<std::vector<double>>& thresholds, double pixelError);
 
