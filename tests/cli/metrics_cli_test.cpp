@@ -184,6 +184,14 @@ TEST_F(MetricsCli, BadInputIsExitCode2) {
         EXPECT_EQ(run.exitCode, 2) << bad;
         EXPECT_NE(run.output.find("judge"), std::string::npos) << bad << ": " << run.output;
     }
+    // A command that scores no image takes no judge option; one that does refuses a bad one.
+    EXPECT_EQ(runLodopt("estimate --scene harbor --view overview --levels 0,0,0 --judge-nits 80").exitCode, 2);
+    const CommandResult optimize = lodopt::cli_test::runShell(
+        std::string(LODOPT_EXECUTABLE) + " optimize --scene harbor --budget-ms 7 --size 32x32 --judge-nits -3 --out " +
+        (mDir / "optimize").string() + " 2>&1");
+    EXPECT_EQ(optimize.exitCode, 2) << optimize.output;
+    EXPECT_NE(optimize.output.find("judge parameter intensityTargetNits"), std::string::npos) << optimize.output;
+    EXPECT_FALSE(std::filesystem::exists(mDir / "optimize" / "result.json"));
 }
 
 }  // namespace
