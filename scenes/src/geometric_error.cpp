@@ -573,7 +573,7 @@ std::uint64_t geometryHash(const Object& object) {
             mix(word);
         }
         std::uint64_t tail = 0;
-        std::memcpy(&tail, p + i, bytes - i);
+        if (bytes > i) std::memcpy(&tail, p + i, bytes - i);  // an empty mesh's data() may be null
         mix(tail);
     };
     for (const Level& level : object.levels) {
