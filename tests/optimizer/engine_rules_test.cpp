@@ -12,30 +12,22 @@
 namespace lodopt::optimizer {
 namespace {
 
-using testing::TableEvaluator;
+using testing::HintProblem;
 
-// Three objects, each 4 / 2 / 1 ms at levels 0 / 1 / 2 (12 ms all finest, 3 ms all coarsest).
+// HintProblem's three objects (fixtures.hpp: 4 / 2 / 1 ms at levels 0 / 1 / 2, 12 ms all finest,
+// 3 ms all coarsest; screen sizes 0.6, 0.3, 0.1), with
 //                          near    middle   far
 //   pixels per world unit  100       50      10
-//   screen size            0.6      0.3     0.1
 //   bounding radius          1        1       1
 //   deviation at levels 1, 2: 0.005, 0.02 (pixelerror); 0.01, 0.04 (unreal-auto)
 // pixelerror's thresholds (deviation x pixels per unit): near 0.5, 2; middle 0.25, 1; far 0.05, 0.2.
 struct RuleProblem {
-    TableEvaluator evaluator{{{0, 0.2, 0.4}, {0, 0.1, 0.2}, {0, 0.05, 0.1}}};
-    AdditiveCost cost{0.0, {{4, 2, 1}, {4, 2, 1}, {4, 2, 1}}};
+    HintProblem base;
     Problem problem(double budgetMs, double deviation1, double deviation2) {
-        Problem p;
-        p.levelCounts = {3, 3, 3};
-        p.evaluator = &evaluator;
-        p.cost = &cost;
-        p.budgetMs = budgetMs;
-        p.hints.resize(3);
+        Problem p = base.problem(budgetMs);
         const double pixelsPerUnit[] = {100, 50, 10};
-        const double size[] = {0.6, 0.3, 0.1};
         for (int i = 0; i < 3; ++i) {
             p.hints[i].pixelsPerWorldUnit = pixelsPerUnit[i];
-            p.hints[i].screenCoverage = size[i];
             p.hints[i].boundingRadius = 1.0;
             p.hints[i].levelDeviation = {0.0, deviation1, deviation2};
         }

@@ -197,4 +197,31 @@ inline bool sameLog(const std::vector<IterationLog>& a, const std::vector<Iterat
     return true;
 }
 
+// Three objects with hints; additive cost 4 ms per object at level 0, 2 at 1, 1 at 2.
+//   object        near      middle    far
+//   distance        5         11       20
+//   area           10          5        2
+// With thresholds {8, 16}: levels [0, 1, 2]; importance decreases near → far.
+struct HintProblem {
+    TableEvaluator evaluator{{{0, 0.2, 0.4}, {0, 0.1, 0.2}, {0, 0.05, 0.1}}};
+    AdditiveCost cost{0.0, {{4, 2, 1}, {4, 2, 1}, {4, 2, 1}}};
+    Problem problem(double budgetMs) {
+        Problem p;
+        p.levelCounts = {3, 3, 3};
+        p.evaluator = &evaluator;
+        p.cost = &cost;
+        p.budgetMs = budgetMs;
+        p.hints.resize(3);
+        const double distance[] = {5, 11, 20};
+        const double area[] = {10, 5, 2};
+        const double coverage[] = {0.6, 0.3, 0.1};
+        for (int i = 0; i < 3; ++i) {
+            p.hints[i].distance = distance[i];
+            p.hints[i].projectedArea = area[i];
+            p.hints[i].screenCoverage = coverage[i];
+        }
+        return p;
+    }
+};
+
 }  // namespace lodopt::optimizer::testing
