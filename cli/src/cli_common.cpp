@@ -113,6 +113,13 @@ nlohmann::json judgeJson(const std::optional<metrics::JudgeResult>& result, cons
             {"display_scale", parameters.displayScale}};
 }
 
+nlohmann::json judgeIdentity(const JudgeOptions& options) {
+    if (!options.enabled) return false;
+    return {{"nits", options.parameters.intensityTargetNits},
+            {"display-scale", options.parameters.displayScale},
+            {"pnorm", options.parameters.pnorm}};
+}
+
 void addResumeFlag(CLI::App& command, bool& resume, const std::string& what) {
     command.add_flag("--resume", resume, "Continue from " + what + " saved by an interrupted run");
 }

@@ -82,6 +82,8 @@ std::optional<metrics::JudgeParameters> judgeParameters(const JudgeOptions& opti
 // {"butteraugli": 3-norm distance, "butteraugli_max", "pnorm", "intensity_target_nits",
 //  "display_scale"}: one judge verdict as every command writes it; null without one.
 nlohmann::json judgeJson(const std::optional<metrics::JudgeResult>& result, const metrics::JudgeParameters& parameters);
+// The judge's options as a checkpoint identity holds them (checkIdentity): false with --no-judge.
+nlohmann::json judgeIdentity(const JudgeOptions& options);
 
 // --backend osmesa|egl (renderer::Backend) and --frame-clock auto|wall|gpu (renderer::FrameClock;
 // docs/renderer.md "Backends" and "Timing"): the platform a command draws on, and what a frame's

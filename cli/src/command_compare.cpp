@@ -123,10 +123,7 @@ nlohmann::json checkpointIdentity(const OptimizeOptions& options, std::int64_t e
             {"particles", options.particles},
             {"max-seconds", options.maxSeconds},
             {"fill", effectiveFillProbability(options)},
-            {"judge", options.judge.enabled ? nlohmann::json{{"nits", options.judge.parameters.intensityTargetNits},
-                                                             {"display-scale", options.judge.parameters.displayScale},
-                                                             {"pnorm", options.judge.parameters.pnorm}}
-                                            : nlohmann::json(false)}};
+            {"judge", judgeIdentity(options.judge)}};
 }
 
 // The saved runs of an earlier, interrupted compare, by runKey.

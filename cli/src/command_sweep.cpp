@@ -47,10 +47,7 @@ nlohmann::json settingsSignature(const SweepOptions& o) {
             {"profile", p.profile},     {"model", p.model},              {"eval", p.evalPath},
             {"seed-from", p.seedFrom},  {"particles", p.particles},      {"paper", p.paper},
             {"fill", effectiveFillProbability(p)},
-            {"judge", p.judge.enabled ? nlohmann::json{{"nits", p.judge.parameters.intensityTargetNits},
-                                                       {"display-scale", p.judge.parameters.displayScale},
-                                                       {"pnorm", p.judge.parameters.pnorm}}
-                                      : nlohmann::json(false)}};
+            {"judge", judgeIdentity(p.judge)}};
 }
 
 std::vector<scenes::Camera> camerasFromFile(const std::string& file) {

@@ -12,7 +12,6 @@
 #include "report_data.hpp"
 #include "report_images.hpp"
 #include "report_sections.hpp"
-#include "evaluation/evaluation.hpp"
 #include "scenes/builtin.hpp"
 
 namespace lodopt::cli {
@@ -39,7 +38,7 @@ struct Baseline {
     double fitness = NAN;
     double predictedMs = NAN;
     std::int64_t evaluations = 0;
-    double judge = NAN;  // butteraugli p-norm of `image` against the reference
+    JudgeMap judge;  // `image` against the reference, by the judge
 };
 
 // The judge's viewing conditions result.json records (defaults where it has none).
@@ -119,7 +118,7 @@ Baseline runBaseline(const nlohmann::json& result, const fs::path& folder, const
         baseline.evaluations = run.evaluations;
         baseline.levels.assign(levels.begin(), levels.end());
         baseline.judge =
-            evaluation::judgeFrame(baseline.image, context.setup->reference(), judgeParametersOf(result)).distance;
+            judgeMap(baseline.image, context.setup->reference(), judgeParametersOf(result), "baseline");
     } catch (const std::exception& error) {
         baseline.image = {};
         baseline.note = "No baseline: " + std::string(error.what());
@@ -202,7 +201,7 @@ void addFacts(ReportContext& context, const nlohmann::json& result, const Baseli
     }
     if (baseline.image.width > 0) {
         rows.push_back({"baseline " + baselineName + ": fitness, judge, predicted ms",
-                        fixed(baseline.fitness, 4) + ", " + fixed(baseline.judge, 3) + ", " +
+                        fixed(baseline.fitness, 4) + ", " + fixed(baseline.judge.distance, 3) + ", " +
                             fixed(baseline.predictedMs, 2)});
     }
     context.html.table({"", "value"}, rows);
@@ -266,8 +265,7 @@ void addImages(ReportContext& context, const fs::path& folder, const nlohmann::j
     // Where the judge sees the answer, and the baseline, differ from the reference.
     const metrics::JudgeParameters judgeParameters = judgeParametersOf(result);
     std::vector<ReportImage> judged;
-    auto addJudgeMap = [&](const renderer::Frame& image, const std::string& name, const std::string& label) {
-        const JudgeMap map = judgeMap(image, reference, judgeParameters, label);
+    auto addJudgeMap = [&](const JudgeMap& map, const std::string& name, const std::string& label) {
         const std::string path = (dir / (context.prefix + name)).string();
         renderer::writeColorImage(path, map.heat);
         ReportImage picture = makeImage(path,
@@ -280,8 +278,8 @@ void addImages(ReportContext& context, const fs::path& folder, const nlohmann::j
         picture.legendHigh = fixed(map.high, 0);
         judged.push_back(picture);
     };
-    addJudgeMap(optimized, "judge_map.png", "optimized");
-    if (baseline.image.width > 0) addJudgeMap(baseline.image, "judge_map_baseline.png", "baseline " + baselineName);
+    addJudgeMap(judgeMap(optimized, reference, judgeParameters, "optimized"), "judge_map.png", "optimized");
+    if (baseline.image.width > 0) addJudgeMap(baseline.judge, "judge_map_baseline.png", "baseline " + baselineName);
     context.html.images(judged);
 }
 
