@@ -75,7 +75,8 @@ void addProfileOptions(CLI::App& command, std::string& profile, std::string& mod
 }
 
 void addWeightsOption(CLI::App& command, std::string& weights) {
-    command.add_option("--weights", weights, "Fusion weights ssim,boundary,information (each >= 0; 0 skips that metric)")
+    command
+        .add_option("--weights", weights, "Fusion weights ssim,boundary,information (each >= 0; 0 skips that metric)")
         ->capture_default_str();
 }
 
@@ -84,13 +85,16 @@ void addJudgeOptions(CLI::App& command, JudgeOptions& options, bool withSwitch) 
         command.add_flag("!--no-judge", options.enabled,
                          "Do not score the answers with the judge (butteraugli), which no search reads");
     }
-    command.add_option("--judge-nits", options.parameters.intensityTargetNits,
-                       "Judge: the display's white in nits (butteraugli's intensity target)")
+    command
+        .add_option("--judge-nits", options.parameters.intensityTargetNits,
+                    "Judge: the display's white in nits (butteraugli's intensity target)")
         ->capture_default_str();
-    command.add_option("--judge-display-scale", options.parameters.displayScale,
-                       "Judge: display pixels per image pixel on each axis (1..16)")
+    command
+        .add_option("--judge-display-scale", options.parameters.displayScale,
+                    "Judge: display pixels per image pixel on each axis (1..16)")
         ->capture_default_str();
-    command.add_option("--judge-pnorm", options.parameters.pnorm, "Judge: the p of the p-norm pooling the distance map")
+    command
+        .add_option("--judge-pnorm", options.parameters.pnorm, "Judge: the p of the p-norm pooling the distance map")
         ->capture_default_str();
 }
 
@@ -104,7 +108,8 @@ std::optional<metrics::JudgeParameters> judgeParameters(const JudgeOptions& opti
     return options.parameters;
 }
 
-nlohmann::json judgeJson(const std::optional<metrics::JudgeResult>& result, const metrics::JudgeParameters& parameters) {
+nlohmann::json judgeJson(const std::optional<metrics::JudgeResult>& result,
+                         const metrics::JudgeParameters& parameters) {
     if (!result) return nullptr;
     return {{"butteraugli", result->distance},
             {"butteraugli_max", result->maxDistance},
@@ -162,8 +167,8 @@ void parseSize(const std::string& text, int& width, int& height) {
     int w = 0, h = 0;
     char x = 0, extra = 0;
     std::istringstream stream(text);
-    if (!(stream >> w >> x >> h) || (x != 'x' && x != 'X') || (stream >> extra) || w <= 0 || h <= 0 ||
-        w > 16384 || h > 16384) {
+    if (!(stream >> w >> x >> h) || (x != 'x' && x != 'X') || (stream >> extra) || w <= 0 || h <= 0 || w > 16384 ||
+        h > 16384) {
         throw UsageError("--size: '" + text + "' is not WIDTHxHEIGHT with 1..16384 pixels each");
     }
     width = w;

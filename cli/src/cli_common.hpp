@@ -1,12 +1,11 @@
 // Shared plumbing of the lodopt commands: exit codes, error classes, JSON and table output.
 #pragma once
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "metrics/judge.hpp"
 #include "metrics/metrics.hpp"

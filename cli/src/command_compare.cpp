@@ -22,8 +22,8 @@
 #include "interrupt.hpp"
 #include "optimize_run.hpp"
 #include "progress.hpp"
-#include "statistics.hpp"
 #include "scenes/atomic_file.hpp"
+#include "statistics.hpp"
 
 namespace lodopt::cli {
 namespace {
@@ -53,19 +53,20 @@ nlohmann::json runToJson(const RunRecord& run) {
                        row.cacheHits, row.elapsedSeconds});
     }
     const auto& components = result.bestScore.components;
-    return {{"algorithm", run.algorithm},
-            {"seed", run.seed},
-            {"wall_seconds", run.wallSeconds},
-            {"best", result.best},
-            {"fitness", result.bestScore.fitness},
-            {"components", std::vector<double>(components.begin(), components.begin() + result.bestScore.componentCount)},
-            {"predicted_ms", result.predictedMs},
-            {"evaluations", result.evaluations},
-            {"cache_hits", result.cacheHits},
-            {"iterations", result.iterations},
-            {"stop_reason", std::string(optimizer::toString(result.stopReason))},
-            {"judge", run.judge ? nlohmann::json(*run.judge) : nlohmann::json(nullptr)},
-            {"log", log}};
+    return {
+        {"algorithm", run.algorithm},
+        {"seed", run.seed},
+        {"wall_seconds", run.wallSeconds},
+        {"best", result.best},
+        {"fitness", result.bestScore.fitness},
+        {"components", std::vector<double>(components.begin(), components.begin() + result.bestScore.componentCount)},
+        {"predicted_ms", result.predictedMs},
+        {"evaluations", result.evaluations},
+        {"cache_hits", result.cacheHits},
+        {"iterations", result.iterations},
+        {"stop_reason", std::string(optimizer::toString(result.stopReason))},
+        {"judge", run.judge ? nlohmann::json(*run.judge) : nlohmann::json(nullptr)},
+        {"log", log}};
 }
 
 RunRecord runFromJson(const nlohmann::json& saved) {
@@ -87,14 +88,15 @@ RunRecord runFromJson(const nlohmann::json& saved) {
     result.cacheHits = saved.at("cache_hits").get<std::int64_t>();
     result.iterations = saved.at("iterations").get<int>();
     const std::string stop = saved.at("stop_reason").get<std::string>();
-    for (optimizer::StopReason reason : {optimizer::StopReason::Completed, optimizer::StopReason::MaxIterations,
-                                         optimizer::StopReason::Stable, optimizer::StopReason::MaxEvaluations,
-                                         optimizer::StopReason::WallTime}) {
+    for (optimizer::StopReason reason :
+         {optimizer::StopReason::Completed, optimizer::StopReason::MaxIterations, optimizer::StopReason::Stable,
+          optimizer::StopReason::MaxEvaluations, optimizer::StopReason::WallTime}) {
         if (optimizer::toString(reason) == stop) result.stopReason = reason;
     }
     for (const nlohmann::json& row : saved.at("log")) {
-        result.log.push_back({row.at(0).get<int>(), numberOrNaN(row.at(1)), numberOrNaN(row.at(2)), numberOrNaN(row.at(3)),
-                              row.at(4).get<std::int64_t>(), row.at(5).get<std::int64_t>(), numberOrNaN(row.at(6))});
+        result.log.push_back({row.at(0).get<int>(), numberOrNaN(row.at(1)), numberOrNaN(row.at(2)),
+                              numberOrNaN(row.at(3)), row.at(4).get<std::int64_t>(), row.at(5).get<std::int64_t>(),
+                              numberOrNaN(row.at(6))});
     }
     return run;
 }
@@ -166,8 +168,8 @@ struct CompareOptions {
 // interrupt stops after it.
 std::vector<RunRecord> runAll(const CompareOptions& compare, const std::vector<std::string>& names,
                               const OptimizeOptions& runOptions, const evaluation::SearchView& context,
-                              renderer::Renderer& renderer, const CheckpointFile& checkpoint, const nlohmann::json& identity,
-                              std::map<std::string, RunRecord>& saved) {
+                              renderer::Renderer& renderer, const CheckpointFile& checkpoint,
+                              const nlohmann::json& identity, std::map<std::string, RunRecord>& saved) {
     const std::size_t total = names.size() * std::size_t(compare.seeds);
     std::size_t done = 0;
     for (const std::string& name : names) {
@@ -240,16 +242,17 @@ nlohmann::json summarize(const std::vector<std::string>& names, const std::vecto
         }
         const double minFitness = *std::min_element(fitness.begin(), fitness.end());
         const double maxFitness = *std::max_element(fitness.begin(), fitness.end());
-        table.push_back({{"algorithm", name},
-                         {"runs", fitness.size()},
-                         {"median_fitness", median(fitness)},
-                         {"min_fitness", minFitness},
-                         {"max_fitness", maxFitness},
-                         {"median_evals_to_99pct", toReach.empty() ? nlohmann::json() : nlohmann::json(median(toReach))},
-                         {"reached_99pct", reached},
-                         {"median_wall_seconds", median(wall)},
-                         {"median_evaluations", median(evals)},
-                         {"median_judge", judged.empty() ? nlohmann::json() : nlohmann::json(median(judged))}});
+        table.push_back(
+            {{"algorithm", name},
+             {"runs", fitness.size()},
+             {"median_fitness", median(fitness)},
+             {"min_fitness", minFitness},
+             {"max_fitness", maxFitness},
+             {"median_evals_to_99pct", toReach.empty() ? nlohmann::json() : nlohmann::json(median(toReach))},
+             {"reached_99pct", reached},
+             {"median_wall_seconds", median(wall)},
+             {"median_evaluations", median(evals)},
+             {"median_judge", judged.empty() ? nlohmann::json() : nlohmann::json(median(judged))}});
         csv << name << ',' << fitness.size() << ',' << median(fitness) << ',' << minFitness << ',' << maxFitness << ','
             << (toReach.empty() ? std::string("") : std::to_string(median(toReach))) << ',' << reached << ','
             << median(wall) << ',' << median(evals) << ','
@@ -277,13 +280,14 @@ void printCompare(const nlohmann::json& document, const std::filesystem::path& d
     for (const nlohmann::json& row : document["algorithms"]) {
         nameWidth = std::max(nameWidth, int(row["algorithm"].get<std::string>().size()) + 2);
     }
-    std::cout << std::left << std::setw(nameWidth) << "algorithm" << std::right << std::setw(10) << "median" << std::setw(10)
-              << "min" << std::setw(10) << "max" << std::setw(14) << "evals→99%" << std::setw(10) << "wall s" << std::setw(10) << "judge\n";
+    std::cout << std::left << std::setw(nameWidth) << "algorithm" << std::right << std::setw(10) << "median"
+              << std::setw(10) << "min" << std::setw(10) << "max" << std::setw(14) << "evals→99%" << std::setw(10)
+              << "wall s" << std::setw(10) << "judge\n";
     for (const nlohmann::json& row : document["algorithms"]) {
-        std::cout << std::left << std::setw(nameWidth) << row["algorithm"].get<std::string>() << std::right << std::fixed
-                  << std::setprecision(4) << std::setw(10) << row["median_fitness"].get<double>() << std::setw(10)
-                  << row["min_fitness"].get<double>() << std::setw(10) << row["max_fitness"].get<double>()
-                  << std::setw(14)
+        std::cout << std::left << std::setw(nameWidth) << row["algorithm"].get<std::string>() << std::right
+                  << std::fixed << std::setprecision(4) << std::setw(10) << row["median_fitness"].get<double>()
+                  << std::setw(10) << row["min_fitness"].get<double>() << std::setw(10)
+                  << row["max_fitness"].get<double>() << std::setw(14)
                   << (row["median_evals_to_99pct"].is_null()
                           ? std::string("-")
                           : std::to_string(int(row["median_evals_to_99pct"].get<double>())))

@@ -55,16 +55,22 @@ void matchChannels(renderer::LoadedImage& a, const std::string& pathA, renderer:
     };
     if (a.channels == 3 && b.channels == 4) return toRgba(a);
     if (a.channels == 4 && b.channels == 3) return toRgba(b);
-    throw UsageError("channel counts differ: " + pathA + " has " + std::to_string(a.channels) + ", " + pathB +
-                     " has " + std::to_string(b.channels) + " (gray and color images cannot be compared)");
+    throw UsageError("channel counts differ: " + pathA + " has " + std::to_string(a.channels) + ", " + pathB + " has " +
+                     std::to_string(b.channels) + " (gray and color images cannot be compared)");
 }
 
 nlohmann::json componentJson(bool computed, double candidate, double reference, double fidelity, double weight) {
     if (!computed) {
-        return {{"computed", false}, {"candidate", nullptr}, {"reference", nullptr}, {"fidelity", nullptr},
+        return {{"computed", false},
+                {"candidate", nullptr},
+                {"reference", nullptr},
+                {"fidelity", nullptr},
                 {"weight", weight}};
     }
-    return {{"computed", true}, {"candidate", candidate}, {"reference", reference}, {"fidelity", fidelity},
+    return {{"computed", true},
+            {"candidate", candidate},
+            {"reference", reference},
+            {"fidelity", fidelity},
             {"weight", weight}};
 }
 
@@ -112,37 +118,35 @@ void runMetrics(const MetricsOptions& options) {
     }
 
     if (options.output.json) {
-        printJson({{"candidate_file", options.candidate},
-                   {"reference_file", options.reference},
-                   {"width", candidate.width},
-                   {"height", candidate.height},
-                   {"channels", candidate.channels},
-                   {"gray", options.gray},
-                   {"ssim", componentJson(result.ssimComputed, result.ssim, 1.0, result.ssimFidelity,
-                                          parameters.ssimWeight)},
-                   {"boundary_entropy",
-                    componentJson(result.boundaryEntropy.computed, result.boundaryEntropy.candidate,
-                                  result.boundaryEntropy.reference, result.boundaryEntropy.fidelity,
-                                  parameters.boundaryEntropyWeight)},
-                   {"information_entropy",
-                    componentJson(result.informationEntropy.computed, result.informationEntropy.candidate,
-                                  result.informationEntropy.reference, result.informationEntropy.fidelity,
-                                  parameters.informationEntropyWeight)},
-                   {"boundary_entropy_mode", options.boundaryMode},
-                   {"information_entropy_mode", options.informationMode},
-                   {"precision", result.precision},
-                   {"recall", result.recall},
-                   {"true_positives", result.truePositives},
-                   {"false_positives", result.falsePositives},
-                   {"false_negatives", result.falseNegatives},
-                   {"match_tolerance", options.tolerance},
-                   {"fitness", result.fitness},
-                   {"judge", judgeJson(verdict, judgeSettings)}});
+        printJson(
+            {{"candidate_file", options.candidate},
+             {"reference_file", options.reference},
+             {"width", candidate.width},
+             {"height", candidate.height},
+             {"channels", candidate.channels},
+             {"gray", options.gray},
+             {"ssim", componentJson(result.ssimComputed, result.ssim, 1.0, result.ssimFidelity, parameters.ssimWeight)},
+             {"boundary_entropy", componentJson(result.boundaryEntropy.computed, result.boundaryEntropy.candidate,
+                                                result.boundaryEntropy.reference, result.boundaryEntropy.fidelity,
+                                                parameters.boundaryEntropyWeight)},
+             {"information_entropy",
+              componentJson(result.informationEntropy.computed, result.informationEntropy.candidate,
+                            result.informationEntropy.reference, result.informationEntropy.fidelity,
+                            parameters.informationEntropyWeight)},
+             {"boundary_entropy_mode", options.boundaryMode},
+             {"information_entropy_mode", options.informationMode},
+             {"precision", result.precision},
+             {"recall", result.recall},
+             {"true_positives", result.truePositives},
+             {"false_positives", result.falsePositives},
+             {"false_negatives", result.falseNegatives},
+             {"match_tolerance", options.tolerance},
+             {"fitness", result.fitness},
+             {"judge", judgeJson(verdict, judgeSettings)}});
         return;
     }
     std::cout << "candidate " << options.candidate << " vs reference " << options.reference << " (" << candidate.width
-              << "x" << candidate.height << ", " << candidate.channels << " channels, gray " << options.gray
-              << ")\n";
+              << "x" << candidate.height << ", " << candidate.channels << " channels, gray " << options.gray << ")\n";
     char header[160];
     std::snprintf(header, sizeof header, "%-20s %12s %12s %10s %8s\n", "component", "candidate", "reference",
                   "fidelity", "weight");
@@ -171,22 +175,23 @@ void runMetrics(const MetricsOptions& options) {
 
 void addMetricsCommand(CLI::App& app) {
     auto options = std::make_shared<MetricsOptions>();
-    CLI::App* command =
-        app.add_subcommand("metrics", "Score image A (candidate) against image B (reference): SSIM, entropies, "
-                                      "precision/recall, fused fitness");
-    command->add_option("candidate", options->candidate, "Candidate image A (PNG, JPEG or binary PNM)")
-        ->required();
+    CLI::App* command = app.add_subcommand("metrics",
+                                           "Score image A (candidate) against image B (reference): SSIM, entropies, "
+                                           "precision/recall, fused fitness");
+    command->add_option("candidate", options->candidate, "Candidate image A (PNG, JPEG or binary PNM)")->required();
     command->add_option("reference", options->reference, "Reference image B")->required();
     addWeightsOption(*command, options->weights);
     command->add_option("--gray", options->gray, "Gray weights: paper (0.30/0.59/0.11), bt601 or bt709")
         ->check(CLI::IsMember({"paper", "bt601", "bt709"}))
         ->capture_default_str();
-    command->add_option("--boundary-entropy", options->boundaryMode,
-                        "histogram (Sobel magnitude histogram) or paper (literal Roberts-cross sum)")
+    command
+        ->add_option("--boundary-entropy", options->boundaryMode,
+                     "histogram (Sobel magnitude histogram) or paper (literal Roberts-cross sum)")
         ->check(CLI::IsMember({"histogram", "paper"}))
         ->capture_default_str();
-    command->add_option("--information-entropy", options->informationMode,
-                        "histogram (256-level gray histogram) or paper (literal intensity shares)")
+    command
+        ->add_option("--information-entropy", options->informationMode,
+                     "histogram (256-level gray histogram) or paper (literal intensity shares)")
         ->check(CLI::IsMember({"histogram", "paper"}))
         ->capture_default_str();
     command->add_option("--tolerance", options->tolerance, "Largest channel difference of matching pixels")

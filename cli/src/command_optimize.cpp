@@ -9,8 +9,8 @@
 #include "cli_common.hpp"
 #include "evaluation/evaluation.hpp"
 #include "evaluation/time_cost.hpp"
-#include "optimizer/optimizer.hpp"
 #include "optimize_run.hpp"
+#include "optimizer/optimizer.hpp"
 #include "renderer/renderer.hpp"
 #include "scenes/atomic_file.hpp"
 #include "scenes/builtin.hpp"
@@ -63,7 +63,8 @@ void addSearchOptions(CLI::App& command, OptimizeOptions& options) {
         ->capture_default_str();
     command.add_option("--max-seconds", options.maxSeconds, "Wall-time limit per view (0 = none)")
         ->check(CLI::NonNegativeNumber);
-    command.add_flag("--paper", options.paper, "GA-PSO with the published settings (c1=c2=2, w=1, 3 particles, 20 it.)");
+    command.add_flag("--paper", options.paper,
+                     "GA-PSO with the published settings (c1=c2=2, w=1, 3 particles, 20 it.)");
     command
         .add_option("--seed-from", options.seedFrom,
                     "Start the swarm from these algorithms' answers: comma-separated mckp, greedy, screensize, or none")
@@ -113,8 +114,7 @@ void addOptimizeCommand(CLI::App& app) {
             writeJsonFile((std::filesystem::path(dir) / "result.json").string(), result);
             scenes::writeTextAtomically((std::filesystem::path(dir) / "curve.csv").string(), curveCsv(run.result));
             renderer::writeColorImage((std::filesystem::path(dir) / "optimized.png").string(), run.optimizedImage);
-            renderer::writeColorImage((std::filesystem::path(dir) / "reference.png").string(),
-                                      run.setup->reference());
+            renderer::writeColorImage((std::filesystem::path(dir) / "reference.png").string(), run.setup->reference());
             result["out"] = dir;
             all.push_back(result);
             if (!output->json) printOptimizeSummary(std::cout, result);

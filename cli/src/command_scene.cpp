@@ -11,7 +11,9 @@
 namespace lodopt::cli {
 namespace {
 
-nlohmann::json vec3Json(const glm::vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+nlohmann::json vec3Json(const glm::vec3& v) {
+    return nlohmann::json::array({v.x, v.y, v.z});
+}
 
 // A deviation in world units, four significant digits.
 std::string formatDeviation(float deviation) {
@@ -57,9 +59,12 @@ nlohmann::json sceneInfoJson(const scenes::Scene& scene) {
     for (const scenes::CameraPath& path : scene.paths) {
         paths.push_back({{"name", path.name}, {"frames", path.frames.size()}, {"fps", path.framesPerSecond}});
     }
-    return {{"scene", scene.name},      {"objects", objects},
-            {"views", views},           {"paths", paths},
-            {"materials", scene.materials.size()}, {"textures", scene.textures.size()}};
+    return {{"scene", scene.name},
+            {"objects", objects},
+            {"views", views},
+            {"paths", paths},
+            {"materials", scene.materials.size()},
+            {"textures", scene.textures.size()}};
 }
 
 void printSceneInfo(const scenes::Scene& scene) {
@@ -90,7 +95,9 @@ void printSceneInfo(const scenes::Scene& scene) {
 
 }  // namespace
 
-nlohmann::json sceneInfo(const scenes::Scene& scene) { return sceneInfoJson(scene); }
+nlohmann::json sceneInfo(const scenes::Scene& scene) {
+    return sceneInfoJson(scene);
+}
 
 void addSceneCommand(CLI::App& app) {
     CLI::App* scene = app.add_subcommand("scene", "Inspect or export a scene (built-in name or .gltf/.glb)");
@@ -109,8 +116,10 @@ void addSceneCommand(CLI::App& app) {
     infoCommand->callback([info] {
         scenes::Scene loaded = scenes::loadScene(info->scene, info->seed);
         scenes::computeGeometricErrors(loaded);
-        if (info->output.json) printJson(sceneInfoJson(loaded));
-        else printSceneInfo(loaded);
+        if (info->output.json)
+            printJson(sceneInfoJson(loaded));
+        else
+            printSceneInfo(loaded);
     });
 
     struct ExportOptions {

@@ -13,11 +13,11 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include "cli_common.hpp"
 #include "evaluation/sweep.hpp"
@@ -25,9 +25,9 @@
 #include "optimize_run.hpp"
 #include "progress.hpp"
 #include "report_data.hpp"
-#include "schedule_common.hpp"
 #include "scenes/atomic_file.hpp"
 #include "scenes/viewpoints.hpp"
+#include "schedule_common.hpp"
 #include "sweep_files.hpp"
 #include "sweep_queue.hpp"
 #include "sweep_run.hpp"
@@ -36,16 +36,27 @@
 namespace lodopt::cli {
 namespace {
 
-
 // The options that change a view's answer (checkIdentity); the cameras are in the plan itself.
 nlohmann::json settingsSignature(const SweepOptions& o) {
     const OptimizeOptions& p = o.optimize;
-    return {{"scene", p.scene},         {"scene-seed", p.sceneSeed},     {"seed", p.seed},
-            {"size", p.size},           {"shading", p.shading},          {"budget-ms", p.budgetMs},
-            {"algo", p.algorithm},      {"max-evals", p.maxEvaluations}, {"max-iterations", p.maxIterations},
-            {"stable", p.stableIterations}, {"max-seconds", p.maxSeconds}, {"weights", p.weights},
-            {"profile", p.profile},     {"model", p.model},              {"eval", p.evalPath},
-            {"seed-from", p.seedFrom},  {"particles", p.particles},      {"paper", p.paper},
+    return {{"scene", p.scene},
+            {"scene-seed", p.sceneSeed},
+            {"seed", p.seed},
+            {"size", p.size},
+            {"shading", p.shading},
+            {"budget-ms", p.budgetMs},
+            {"algo", p.algorithm},
+            {"max-evals", p.maxEvaluations},
+            {"max-iterations", p.maxIterations},
+            {"stable", p.stableIterations},
+            {"max-seconds", p.maxSeconds},
+            {"weights", p.weights},
+            {"profile", p.profile},
+            {"model", p.model},
+            {"eval", p.evalPath},
+            {"seed-from", p.seedFrom},
+            {"particles", p.particles},
+            {"paper", p.paper},
             {"fill", effectiveFillProbability(p)},
             {"judge", judgeIdentity(p.judge)}};
 }
@@ -177,8 +188,8 @@ SweepRun runViews(const SweepOptions& o, PreparedScene& prepared, const SweepPla
             ++run.resumed;
         } else {
             const evaluation::SweepViewOutcome outcome =
-                evaluation::sweepView(prepared.scene, camera, *prepared.renderer, prepared.metrics,
-                                      prepared.estimator, prepared.readFeatures, settings, search);
+                evaluation::sweepView(prepared.scene, camera, *prepared.renderer, prepared.metrics, prepared.estimator,
+                                      prepared.readFeatures, settings, search);
             if (run.computed == 0) holdForTest(out, queue.rank());
             writeSweepJson(viewPath(out, *view), viewJson(plan, *view, outcome, queue.rank()));
             ++run.computed;
@@ -215,9 +226,9 @@ void printSummary(const nlohmann::json& s, bool json) {
     std::cout << "sweep: " << s["views"].get<std::size_t>() << " views of " << s["scene"].get<std::string>()
               << " (budget " << s["budget_ms"].get<double>() << " ms) "
               << (s["ranks"].get<int>() > 0 ? "on " + std::to_string(s["ranks"].get<int>()) + " rank(s)" : "merged")
-              << " in " << formatDuration(s["seconds"].get<double>()) << ": mean fitness " << s["mean_fitness"].get<double>()
-              << ", mean predicted " << s["mean_predicted_ms"].get<double>() << " ms (max "
-              << s["max_predicted_ms"].get<double>() << ")";
+              << " in " << formatDuration(s["seconds"].get<double>()) << ": mean fitness "
+              << s["mean_fitness"].get<double>() << ", mean predicted " << s["mean_predicted_ms"].get<double>()
+              << " ms (max " << s["max_predicted_ms"].get<double>() << ")";
     const auto infeasible = s["infeasible_views"].get<std::size_t>();
     if (infeasible > 0) std::cout << "; " << infeasible << " view(s) over budget even at the coarsest levels";
     std::cout << "\n";
@@ -262,9 +273,10 @@ void runScaling(const SweepOptions& o, const OutputOptions& output) {
     double work = 0.0;
     for (double v : measuredViews) work += v;
     // Queue, file writing and the progress line, per view: only a one-rank run separates them.
-    const double overhead = measuredRanks == 1 && measured.value("resumed_by_rank0", 0) == 0
-                                ? std::max(0.0, (wall - sceneSeconds - mergeSeconds - work) / double(measuredViews.size()))
-                                : 0.0;
+    const double overhead =
+        measuredRanks == 1 && measured.value("resumed_by_rank0", 0) == 0
+            ? std::max(0.0, (wall - sceneSeconds - mergeSeconds - work) / double(measuredViews.size()))
+            : 0.0;
     const std::size_t views = o.scalingViews > 0 ? std::size_t(o.scalingViews) : measuredViews.size();
     std::vector<double> cycled(views);
     for (std::size_t k = 0; k < views; ++k) cycled[k] = measuredViews[k % measuredViews.size()];
@@ -272,7 +284,8 @@ void runScaling(const SweepOptions& o, const OutputOptions& output) {
     nlohmann::json rows = nlohmann::json::array();
     for (int ranks : parseIntList(o.scalingRanks, "--scaling-ranks")) {
         if (ranks < 1) throw UsageError("--scaling-ranks: every count must be >= 1");
-        const evaluation::QueueSimulation sim = evaluation::simulateWorkQueue(cycled, ranks, sceneSeconds, overhead, merge);
+        const evaluation::QueueSimulation sim =
+            evaluation::simulateWorkQueue(cycled, ranks, sceneSeconds, overhead, merge);
         double idle = 0.0;
         for (double seconds : sim.idleSeconds) idle += seconds;
         rows.push_back({{"ranks", ranks},
@@ -282,10 +295,10 @@ void runScaling(const SweepOptions& o, const OutputOptions& output) {
                         {"scene_share", sceneSeconds / sim.makespanSeconds},
                         {"merge_share", merge / sim.makespanSeconds}});
     }
-    const nlohmann::json document = {{"from", folder.string()},   {"measured_views", measuredViews.size()},
+    const nlohmann::json document = {{"from", folder.string()},         {"measured_views", measuredViews.size()},
                                      {"measured_ranks", measuredRanks}, {"views", views},
-                                     {"scene_seconds", sceneSeconds}, {"per_view_overhead_seconds", overhead},
-                                     {"merge_seconds", merge},        {"simulated", rows}};
+                                     {"scene_seconds", sceneSeconds},   {"per_view_overhead_seconds", overhead},
+                                     {"merge_seconds", merge},          {"simulated", rows}};
     if (output.json) return printJson(document);
     const Summary spread = summarize(measuredViews);
     std::cout << "sweep scaling (work queue replayed from " << measuredViews.size() << " measured views of "
@@ -332,7 +345,7 @@ void runSweep(SweepOptions o, const OutputOptions& output) {
             }
             writeSweepJson(std::filesystem::path(o.out) / "sweep.plan.json", planJson(plan));
         }
-        std::unique_ptr<ViewQueue> queue = session ? session->makeQueue(plan.cameras.size())
+        std::unique_ptr<ViewQueue> queue = session           ? session->makeQueue(plan.cameras.size())
                                            : o.shard.empty() ? makeLocalQueue(plan.cameras.size())
                                                              : makeShardQueue(plan.cameras.size(), o.shard);
         InterruptGuard interruptGuard;
@@ -381,11 +394,14 @@ void runSweep(SweepOptions o, const OutputOptions& output) {
 
 }  // namespace
 
-void runSweepCommand(const SweepOptions& options, const OutputOptions& output) { runSweep(options, output); }
+void runSweepCommand(const SweepOptions& options, const OutputOptions& output) {
+    runSweep(options, output);
+}
 
 void addSweepSources(CLI::App& command, SweepOptions& options) {
-    command.add_option("--grid", options.grid, "Camera grid CxRxD@H[/P]: columns x rows x directions at height H, "
-                                                "pitch P degrees (default -10) over the scene's footprint");
+    command.add_option("--grid", options.grid,
+                       "Camera grid CxRxD@H[/P]: columns x rows x directions at height H, "
+                       "pitch P degrees (default -10) over the scene's footprint");
     command.add_option("--grid-box", options.gridBox, "The grid's ground box MIN_X,MIN_Z,MAX_X,MAX_Z");
     command.add_option("--path", options.path, "Every frame of a camera path (name or JSON file)");
     command.add_option("--view-count", options.viewCount, "Views sampled around the scene's views")
@@ -419,7 +435,8 @@ void addSweepCommand(CLI::App& app) {
                         "Model the work queue at other rank counts from this finished sweep's measured view times");
     command->add_option("--scaling-ranks", options->scalingRanks, "Rank counts to model (--scaling)")
         ->capture_default_str();
-    command->add_option("--scaling-views", options->scalingViews, "Views to model, cycling the measured ones (--scaling)")
+    command
+        ->add_option("--scaling-views", options->scalingViews, "Views to model, cycling the measured ones (--scaling)")
         ->check(CLI::Range(1L, 100000000L));
     addOutputOptions(*command, *output);
     command->callback([options, output] {

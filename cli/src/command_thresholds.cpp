@@ -3,8 +3,8 @@
 // (each engine's convention) and the scene as <scene>.lod.glb with MSFT_lod and
 // MSFT_screencoverage in UnityGLTF's convention (docs/thresholds.md).
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
@@ -14,10 +14,10 @@
 #include "evaluation/switch_rules.hpp"
 #include "optimize_run.hpp"
 #include "progress.hpp"
-#include "schedule_common.hpp"
 #include "report_data.hpp"
 #include "scenes/builtin.hpp"
 #include "scenes/gltf_io.hpp"
+#include "schedule_common.hpp"
 #include "sweep_files.hpp"
 #include "sweep_run.hpp"
 
@@ -49,7 +49,9 @@ double sweepFov(const SweepTable& table, double given) {
 }
 
 // A figure, or null where it is undefined (no samples, no held-out views).
-nlohmann::json numberOrNull(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+nlohmann::json numberOrNull(double value) {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+}
 
 nlohmann::json objectJson(const scenes::Object& object, const evaluation::ObjectThresholds& r) {
     return {{"name", object.name},
@@ -71,21 +73,28 @@ nlohmann::json objectJson(const scenes::Object& object, const evaluation::Object
 
 const nlohmann::json& conventions() {
     static const nlohmann::json text = {
-        {"rule", "level k is drawn for the first k whose threshold the object reaches; below every threshold the "
-                 "coarsest level (never culled)"},
-        {"fitted_screen_size", "the thresholds as fitted, in screen size (bounding-sphere diameter over the view height)"},
-        {"screen_size", "fitted_screen_size / lod_bias: the global LOD bias that meets the budget is baked into this and "
-                        "every engine value below, so engines keep theirs at 1 (Unity QualitySettings.lodBias, Unreal "
-                        "r.StaticMeshLODDistanceScale)"},
-        {"unreal_lod_hysteresis", "screen size above the threshold an object must reach to go finer again (Unreal "
-                                  "skeletal mesh LODHysteresis; static meshes have none)"},
-        {"hysteresis", "three.js LOD.addLevel(object, distance, hysteresis): the level goes finer again only closer "
-                       "than distance x (1 - hysteresis); Unity and Babylon.js have no band"},
+        {"rule",
+         "level k is drawn for the first k whose threshold the object reaches; below every threshold the "
+         "coarsest level (never culled)"},
+        {"fitted_screen_size",
+         "the thresholds as fitted, in screen size (bounding-sphere diameter over the view height)"},
+        {"screen_size",
+         "fitted_screen_size / lod_bias: the global LOD bias that meets the budget is baked into this and "
+         "every engine value below, so engines keep theirs at 1 (Unity QualitySettings.lodBias, Unreal "
+         "r.StaticMeshLODDistanceScale)"},
+        {"unreal_lod_hysteresis",
+         "screen size above the threshold an object must reach to go finer again (Unreal "
+         "skeletal mesh LODHysteresis; static meshes have none)"},
+        {"hysteresis",
+         "three.js LOD.addLevel(object, distance, hysteresis): the level goes finer again only closer "
+         "than distance x (1 - hysteresis); Unity and Babylon.js have no band"},
         {"unreal_screen_size", "Unreal Engine static mesh LOD ScreenSize (views at least as wide as high)"},
-        {"unity_relative_height", "Unity LOD.screenRelativeTransitionHeight: bounds' largest extent over the view "
-                                  "height; also the values of MSFT_screencoverage in the .lod.glb (UnityGLTF)"},
-        {"threejs_distance", "THREE.LOD addLevel(object, distance): level k from this camera distance on, the LOD at "
-                             "the bounds' centre, for fov_y_degrees"},
+        {"unity_relative_height",
+         "Unity LOD.screenRelativeTransitionHeight: bounds' largest extent over the view "
+         "height; also the values of MSFT_screencoverage in the .lod.glb (UnityGLTF)"},
+        {"threejs_distance",
+         "THREE.LOD addLevel(object, distance): level k from this camera distance on, the LOD at "
+         "the bounds' centre, for fov_y_degrees"},
         {"babylon_distance", "Babylon.js addLODLevel(distance) to the bounding sphere's centre, for fov_y_degrees"},
         {"babylon_coverage", "Babylon.js addLODLevel(coverage) with useLODScreenCoverage, for the aspect"}};
     return text;
@@ -112,7 +121,9 @@ OptimizeOptions sweepOptions(const SweepTable& table, const std::string& from) {
 }
 
 nlohmann::json biasJson(const evaluation::LodBias& bias) {
-    return {{"lod_bias", bias.bias}, {"fitting_mean_predicted_ms", bias.meanPredictedMs}, {"meets_budget", bias.meetsBudget}};
+    return {{"lod_bias", bias.bias},
+            {"fitting_mean_predicted_ms", bias.meanPredictedMs},
+            {"meets_budget", bias.meetsBudget}};
 }
 
 nlohmann::json comparisonJson(const evaluation::RuleComparison& comparison) {
@@ -181,15 +192,15 @@ void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
     compare.holdoutEvery = o.holdoutEvery;
     compare.width = prepared.settings.width;
     compare.height = prepared.settings.height;
-    const evaluation::RuleComparison comparison =
-        evaluation::compareSwitchRules(scene, views, rules, *prepared.renderer, prepared.metrics, prepared.estimator,
-                                       prepared.readFeatures, compare);
+    const evaluation::RuleComparison comparison = evaluation::compareSwitchRules(
+        scene, views, rules, *prepared.renderer, prepared.metrics, prepared.estimator, prepared.readFeatures, compare);
     const evaluation::LodBias tunedBias = comparison.rules.front().bias;
     evaluation::applyLodBias(scene, results, tunedBias.bias, settings);
     // Level switches of the exported rule along a camera path, without and with the band.
     nlohmann::json pathSwitches;
     if (!o.switchPath.empty() || !scene.paths.empty()) {
-        const scenes::CameraPath path = o.switchPath.empty() ? scene.paths.front() : loadCameraPath(scene, o.switchPath);
+        const scenes::CameraPath path =
+            o.switchPath.empty() ? scene.paths.front() : loadCameraPath(scene, o.switchPath);
         evaluation::ObjectThresholdList exported;
         for (const evaluation::ObjectThresholds& r : results) exported.push_back(r.screenSize);
         const evaluation::RuleSwitches plain = evaluation::countRuleSwitches(scene, exported, path.frames, 0.0);
@@ -207,7 +218,8 @@ void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
     }
     if (!tunedBias.meetsBudget) {
         std::cerr << "lodopt: warning: even the coarsest levels the views need are predicted over the budget on "
-                     "average (" << tunedBias.meanPredictedMs << " ms > " << sweep.budgetMs << " ms)\n";
+                     "average ("
+                  << tunedBias.meanPredictedMs << " ms > " << sweep.budgetMs << " ms)\n";
     }
 
     nlohmann::json objects = nlohmann::json::array();
@@ -285,7 +297,8 @@ void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
         }
     }
     if (!pathSwitches.is_null()) {
-        std::cout << "along path " << pathSwitches["path"].get<std::string>() << " (" << pathSwitches["frames"].get<std::size_t>()
+        std::cout << "along path " << pathSwitches["path"].get<std::string>() << " ("
+                  << pathSwitches["frames"].get<std::size_t>()
                   << " frames): " << pathSwitches["switches_without_hysteresis"].get<long long>()
                   << " level switches without hysteresis, " << pathSwitches["switches_with_hysteresis"].get<long long>()
                   << " with " << settings.hysteresis << "\n";
@@ -298,8 +311,9 @@ void fitThresholds(const ThresholdsOptions& o, const OutputOptions& output) {
 void runThresholds(ThresholdsOptions o, const OutputOptions& output) {
     const bool sweeps = !o.sweep.optimize.scene.empty();
     if (sweeps == !o.from.empty()) {
-        throw UsageError("thresholds: give --from SWEEP, or --scene S with the views to sweep (--view-count, --path, "
-                         "--grid or --cameras) and --budget-ms");
+        throw UsageError(
+            "thresholds: give --from SWEEP, or --scene S with the views to sweep (--view-count, --path, "
+            "--grid or --cameras) and --budget-ms");
     }
     if (sweeps) {
         if (!(o.sweep.optimize.budgetMs > 0.0)) throw UsageError("thresholds --scene: --budget-ms is required");
@@ -319,35 +333,40 @@ void addThresholdsCommand(CLI::App& app) {
     auto output = std::make_shared<OutputOptions>();
     CLI::App* command = app.add_subcommand(
         "thresholds", "Fit per-object screen-size LOD switch thresholds to a sweep and write them for engines");
-    options->sweep.optimize.scene.clear();  // no sweep unless --scene is given
+    options->sweep.optimize.scene.clear();                 // no sweep unless --scene is given
     options->sweep.optimize.seedFrom = "screensize,mckp";  // as sweep
     command->add_option("--from", options->from, "A finished sweep (folder or sweep.json)");
-    auto* scene = command->add_option("--scene", options->sweep.optimize.scene,
-                                      "Without --from: sweep this scene first (into <out>/sweep), with the views below");
+    auto* scene =
+        command->add_option("--scene", options->sweep.optimize.scene,
+                            "Without --from: sweep this scene first (into <out>/sweep), with the views below");
     addSweepSources(*command, options->sweep);
     scene->excludes(command->get_option("--from"));
     command->add_option("--out", options->out, "Output folder")->capture_default_str();
     command->add_option("--holdout-every", options->holdoutEvery, "Hold every Nth view out of the fit (0: none)")
         ->check(CLI::Range(0, 1000000))
         ->capture_default_str();
-    command->add_option("--fov", options->fovYDegrees,
-                        "Vertical field of view (degrees) for the distance conventions (default: the sweep's)")
+    command
+        ->add_option("--fov", options->fovYDegrees,
+                     "Vertical field of view (degrees) for the distance conventions (default: the sweep's)")
         ->check(CLI::Range(0.01, 179.0));
-    command->add_option("--prior-samples", options->priorSamples,
-                        "Weight of the rule shared by objects with as many levels in each object's fit, in the object's "
-                        "own samples (0: each object alone)")
+    command
+        ->add_option("--prior-samples", options->priorSamples,
+                     "Weight of the rule shared by objects with as many levels in each object's fit, in the object's "
+                     "own samples (0: each object alone)")
         ->check(CLI::Range(0.0, 1e6))
         ->capture_default_str();
-    command->add_option("--pricing", options->pricing,
-                        "What a disagreement with the optimizer costs in the fit: measured (each level's fitness and "
-                        "time at each fitting view) or level-error (levels off, weighted by screen size squared)")
+    command
+        ->add_option("--pricing", options->pricing,
+                     "What a disagreement with the optimizer costs in the fit: measured (each level's fitness and "
+                     "time at each fitting view) or level-error (levels off, weighted by screen size squared)")
         ->check(CLI::IsMember({"measured", "level-error"}))
         ->capture_default_str();
     command->add_option("--switch-path", options->switchPath,
                         "Count the exported rule's level switches along this camera path (name or JSON file; "
                         "default: the scene's first path, if it has one)");
-    command->add_option("--hysteresis", options->hysteresis,
-                        "Switch band as a fraction of the switch distance, for engines that have one")
+    command
+        ->add_option("--hysteresis", options->hysteresis,
+                     "Switch band as a fraction of the switch distance, for engines that have one")
         ->check(CLI::Range(0.0, 0.9))
         ->capture_default_str();
     addOutputOptions(*command, *output);
